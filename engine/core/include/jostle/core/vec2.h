@@ -1,0 +1,63 @@
+// Vec2 and Rot: the 2D vector and rotation every module uses.
+// Coordinates are pixels with y pointing down (as in images); an angle is in radians,
+// positive from +x toward +y (clockwise on screen).
+#pragma once
+
+#include <cmath>
+
+namespace jostle {
+
+struct Vec2 {
+    float x = 0.0f;
+    float y = 0.0f;
+
+    constexpr Vec2& operator+=(Vec2 v) { x += v.x; y += v.y; return *this; }
+    constexpr Vec2& operator-=(Vec2 v) { x -= v.x; y -= v.y; return *this; }
+    constexpr Vec2& operator*=(float s) { x *= s; y *= s; return *this; }
+    friend constexpr bool operator==(Vec2, Vec2) = default;
+};
+
+constexpr Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+constexpr Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+constexpr Vec2 operator-(Vec2 a) { return {-a.x, -a.y}; }
+constexpr Vec2 operator*(float s, Vec2 v) { return {s * v.x, s * v.y}; }
+constexpr Vec2 operator*(Vec2 v, float s) { return {s * v.x, s * v.y}; }
+
+constexpr float dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+// z of the 3D cross product: > 0 when b turns from a toward +y (clockwise on screen).
+constexpr float cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+// The lecture's perpendicular [-v_y, v_x] (09-57).
+constexpr Vec2 perp(Vec2 v) { return {-v.y, v.x}; }
+constexpr float length_squared(Vec2 v) { return dot(v, v); }
+inline float length(Vec2 v) { return std::sqrt(dot(v, v)); }
+constexpr Vec2 min(Vec2 a, Vec2 b) { return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y}; }
+constexpr Vec2 max(Vec2 a, Vec2 b) { return {a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y}; }
+inline bool is_finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+// v / |v|, or `fallback` when v is zero or not finite (never NaN).
+inline Vec2 normalize_or(Vec2 v, Vec2 fallback) {
+    const float len = length(v);
+    if (!(len > 0.0f) || !std::isfinite(len)) return fallback;
+    return {v.x / len, v.y / len};
+}
+
+// A rotation as cosine and sine, so a shape's angle is turned into a matrix once.
+struct Rot {
+    float c = 1.0f;
+    float s = 0.0f;
+
+    static Rot from_angle(float radians) { return {std::cos(radians), std::sin(radians)}; }
+};
+
+constexpr Vec2 rotate(Rot r, Vec2 v) { return {r.c * v.x - r.s * v.y, r.s * v.x + r.c * v.y}; }
+constexpr Vec2 inv_rotate(Rot r, Vec2 v) { return {r.c * v.x + r.s * v.y, -r.s * v.x + r.c * v.y}; }
+
+// A rigid placement: rotate, then translate.
+struct Transform {
+    Vec2 p;
+    Rot q;
+};
+
+constexpr Vec2 apply(const Transform& t, Vec2 v) { return rotate(t.q, v) + t.p; }
+
+}  // namespace jostle
