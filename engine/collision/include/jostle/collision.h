@@ -33,7 +33,8 @@
 //   CastHit   {hit, t, point, normal}: a segment from->to first touches the shape at
 //             from + t*(to-from), t in [0, 1]; normal is the shape's outward surface normal
 //             there. A segment that starts inside (or on) the shape reports t = 0 and
-//             point = from; if it starts strictly inside, normal = {0, 0}.
+//             point = from; if it starts strictly inside, normal = {0, 0} (for a mask: if it
+//             starts on any set pixel).
 //   SweepHit  {hit, t, point, normal}: a circle moving by va and a shape moving by vb over one
 //             frame first touch at time t in [0, 1]; point is the contact point at that time,
 //             normal points from A (the circle) toward B. Overlap at t = 0 reports t = 0.
@@ -80,7 +81,8 @@
 //   shapes that touch only up to rounding may report a tiny depth or a miss. Degenerate input
 //   (zero length, zero radius, coincident centres, parallel edges) has a defined result:
 //   coincident circle centres use normal {1, 0}. Any NaN or infinite coordinate in a shape
-//   makes it hit nothing (a miss, all zeros), never undefined behaviour.
+//   makes it hit nothing (a miss, all zeros), never undefined behaviour; closest_point then
+//   answers point {0, 0} at distance +infinity.
 //
 // LIMITS
 //   Polygon: 3..16 vertices (kMaxPolygonVertices). Mask: up to 4096 x 4096 pixels

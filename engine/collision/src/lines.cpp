@@ -1,0 +1,172 @@
+// Lines and closest points, slides 09-73 to 09-102: lines in A x + B y = C form and their
+// intersection, segment-segment intersection, and the closest point on a line, a segment,
+// a circle, in a box and in a polygon.
+#include <cmath>
+
+#include "internal.h"
+
+namespace jostle {
+
+using detail::finite;
+
+Line line_through(Vec2 p1, Vec2 p2) {
+    // 09-77
+    const float a = p2.y - p1.y;
+    const float b = p1.x - p2.x;
+    return {a, b, a * p1.x + b * p1.y};
+}
+
+LineIntersection intersect(const Line& l1, const Line& l2) {
+    // 09-74/75: det = A2 B1 - B2 A1; zero means the lines never cross once.
+    const float det = l2.a * l1.b - l2.b * l1.a;
+    if (det == 0.0f || !std::isfinite(det)) {
+        const bool degenerate = (l1.a == 0.0f && l1.b == 0.0f) || (l2.a == 0.0f && l2.b == 0.0f);
+        // Same line when (A, B, C) of one is a multiple of the other's.
+        const bool same = !degenerate && std::isfinite(det) && l1.a * l2.c - l2.a * l1.c == 0.0f &&
+                          l1.b * l2.c - l2.b * l1.c == 0.0f;
+        return {same ? LineRelation::coincident : LineRelation::parallel, {}};
+    }
+    const Vec2 p{(l2.c * l1.b - l2.b * l1.c) / det, (l1.c * l2.a - l1.a * l2.c) / det};
+    if (!finite(p)) return {LineRelation::parallel, {}};
+    return {LineRelation::point, p};
+}
+
+SegmentIntersection intersect(const Segment& s1, const Segment& s2) {
+    // 09-78 finds the lines' crossing, then checks its x and y against both segments' ranges.
+    // The same test is done here on the crossing's parameters along each segment, computed
+    // from cross products: equal in exact arithmetic, but an endpoint that touches the other
+    // segment gives a parameter of exactly 0 or 1 instead of a rounded coordinate.
+    if (!finite(s1) || !finite(s2)) return {};
+    const Vec2 r = s1.b - s1.a;
+    const Vec2 s = s2.b - s2.a;
+    const Vec2 qp = s2.a - s1.a;
+    const float denom = cross(r, s);
+    if (denom != 0.0f) {
+        const float t = cross(qp, s) / denom;
+        const float u = cross(qp, r) / denom;
+        if (!(t >= 0.0f && t <= 1.0f && u >= 0.0f && u <= 1.0f)) return {};
+        return {true, s1.a + t * r};
+    }
+    // Parallel (09-75's det = 0), or one of them is a point.
+    const float rr = dot(r, r);
+    const float ss = dot(s, s);
+    if (rr == 0.0f) {  // s1 is a point
+        const Vec2 p = closest_point(s2, s1.a);
+        return p == s1.a ? SegmentIntersection{true, s1.a} : SegmentIntersection{};
+    }
+    if (ss == 0.0f) {  // s2 is a point
+        const Vec2 p = closest_point(s1, s2.a);
+        return p == s2.a ? SegmentIntersection{true, s2.a} : SegmentIntersection{};
+    }
+    if (cross(qp, r) != 0.0f) return {};  // parallel, not on one line
+    // Collinear: overlap of the parameter ranges along s1.
+    const float t0 = dot(qp, r) / rr;
+    const float t1 = dot(s2.b - s1.a, r) / rr;
+    const float lo = t0 < t1 ? t0 : t1;
+    const float hi = t0 < t1 ? t1 : t0;
+    if (hi < 0.0f || lo > 1.0f) return {};
+    if (lo <= 0.0f) return {true, s1.a};
+    return {true, s1.a + lo * r};
+}
+
+Vec2 closest_point(const Line& line, Vec2 p) {
+    // 09-83: the perpendicular through p is -B x + A y = C2 with C2 = -B px + A py; the
+    // closest point is where it crosses the line. A degenerate line (A = B = 0) gives p.
+    const Line perp{-line.b, line.a, -line.b * p.x + line.a * p.y};
+    const LineIntersection x = intersect(line, perp);
+    return x.kind == LineRelation::point ? x.point : p;
+}
+
+Vec2 closest_point(const Segment& seg, Vec2 p) {
+    // 09-85: the closest point on the line if it lies in the segment, else the nearer
+    // endpoint; as a clamped parameter along the segment, which is the same thing.
+    const Vec2 d = seg.b - seg.a;
+    const float dd = dot(d, d);
+    if (!(dd > 0.0f)) return seg.a;
+    const float t = detail::clamp(dot(p - seg.a, d) / dd, 0.0f, 1.0f);
+    if (t == 1.0f) return seg.b;
+    return seg.a + t * d;
+}
+
+Vec2 closest_point_on(const Circle& c, Vec2 q) {
+    // 09-98: d = c - q, p = q + (|d| - r)/|d| d. q at the centre: every point is as near;
+    // the defined answer is the one in direction +x.
+    const Vec2 d = c.center - q;
+    const float len = length(d);
+    if (!(len > 0.0f)) return c.center + Vec2{c.radius, 0.0f};
+    return q + ((len - c.radius) / len) * d;
+}
+
+namespace {
+constexpr ClosestPoint kNoClosestPoint{{0.0f, 0.0f}, INFINITY};
+
+ClosestPoint closest_in_box(Vec2 lo, Vec2 hi, Vec2 q) {
+    // 09-102: "push in" the point along each axis.
+    const Vec2 p{detail::clamp(q.x, lo.x, hi.x), detail::clamp(q.y, lo.y, hi.y)};
+    return {p, length(q - p)};
+}
+}  // namespace
+
+ClosestPoint closest_point(const Aabb& box, Vec2 q) {
+    if (!finite(box) || !finite(q)) return kNoClosestPoint;
+    return closest_in_box(box.min, box.max, q);
+}
+
+ClosestPoint closest_point(const Obb& box, Vec2 q) {
+    if (!finite(box) || !finite(q)) return kNoClosestPoint;
+    const Rot r = Rot::from_angle(box.angle);
+    const ClosestPoint local = closest_in_box(-box.half, box.half, inv_rotate(r, q - box.center));
+    if (local.distance == 0.0f) return {q, 0.0f};
+    return {rotate(r, local.point) + box.center, local.distance};
+}
+
+bool contains(const Polygon& poly, Vec2 q) {
+    for (int i = 0; i < poly.count; ++i)
+        if (!(dot(poly.normals[i], q - poly.points[i]) <= 0.0f)) return false;
+    return poly.count >= 3;
+}
+
+Vec2 closest_point_on_boundary(const Polygon& poly, Vec2 q, int* edge) {
+    // 09-90: the nearest of the closest points on every edge.
+    Vec2 best = poly.points[0];
+    float best_d2 = INFINITY;
+    int best_edge = 0;
+    for (int i = 0; i < poly.count; ++i) {
+        const Vec2 p = closest_point(Segment{poly.points[i], poly.points[(i + 1) % poly.count]}, q);
+        const float d2 = length_squared(q - p);
+        if (d2 < best_d2) { best_d2 = d2; best = p; best_edge = i; }
+    }
+    if (edge) *edge = best_edge;
+    return best;
+}
+
+ClosestPoint closest_point(const Polygon& poly, Vec2 q) {
+    if (!finite(poly) || !finite(q)) return kNoClosestPoint;
+    if (contains(poly, q)) return {q, 0.0f};
+    const Vec2 p = closest_point_on_boundary(poly, q);
+    return {p, length(q - p)};
+}
+
+ClosestPoint closest_point(const Circle& c, Vec2 q) {
+    if (!finite(c) || !finite(q)) return kNoClosestPoint;
+    if (length_squared(q - c.center) <= c.radius * c.radius) return {q, 0.0f};
+    const Vec2 p = closest_point_on(c, q);
+    return {p, length(q - p)};
+}
+
+ClosestPoint closest_point(const Shape& s, Vec2 q) {
+    return std::visit(
+        [&](const auto& shape) -> ClosestPoint {
+            using T = std::decay_t<decltype(shape)>;
+            if constexpr (std::is_same_v<T, Segment>) {
+                if (!finite(shape) || !finite(q)) return kNoClosestPoint;
+                const Vec2 p = closest_point(shape, q);
+                return {p, length(q - p)};
+            } else {
+                return closest_point(shape, q);
+            }
+        },
+        s);
+}
+
+}  // namespace jostle

@@ -1,0 +1,131 @@
+// Oriented boxes and convex polygons by the separating axis theorem, slides 09-35 to 09-69:
+// project both shapes on each candidate axis (the edge normals), stop at the first axis
+// with a gap, otherwise push along the axis that needs the least push.
+#include <cmath>
+
+#include "internal.h"
+
+namespace jostle {
+
+using detail::finite;
+
+namespace detail {
+
+// Projection of a point set on an axis (09-51: project every point, keep min and max).
+static void project(const ConvexView& v, Vec2 axis, float& lo, float& hi) {
+    lo = hi = dot(v.points[0], axis);
+    for (int i = 1; i < v.count; ++i) {
+        const float d = dot(v.points[i], axis);
+        lo = d < lo ? d : lo;
+        hi = d > hi ? d : hi;
+    }
+}
+
+Manifold sat_collide(const ConvexView& a, const ConvexView& b) {
+    float best = INFINITY;
+    Vec2 best_normal{1.0f, 0.0f};
+    auto test_axes = [&](const ConvexView& owner) {
+        for (int i = 0; i < owner.axis_count; ++i) {
+            const Vec2 u = owner.axes[i];
+            float a_lo, a_hi, b_lo, b_hi;
+            project(a, u, a_lo, a_hi);
+            project(b, u, b_lo, b_hi);
+            // 09-60: the push that separates along +u or -u. Taking the smaller of the two
+            // (rather than the overlap length) is what makes containment come out right.
+            const float push_pos = a_hi - b_lo;  // move A by -push_pos*u: normal u
+            const float push_neg = b_hi - a_lo;  // move A by +push_neg*u: normal -u
+            if (!(push_pos >= 0.0f && push_neg >= 0.0f)) return false;  // a gap (or NaN): 09-50 early exit
+            if (push_pos <= push_neg) {
+                if (push_pos < best) { best = push_pos; best_normal = u; }
+            } else if (push_neg < best) {
+                best = push_neg;
+                best_normal = -u;
+            }
+        }
+        return true;
+    };
+    if (!test_axes(a) || !test_axes(b)) return {};
+    if (best == INFINITY) {
+        // Neither shape brought an axis: two points. They meet only where they are equal.
+        if (a.points[0] == b.points[0]) return hit_with(0.0f, {1.0f, 0.0f});
+        return {};
+    }
+    return hit_with(best, best_normal);
+}
+
+SegmentAxes segment_axes(const Segment& s) {
+    SegmentAxes out;
+    out.points[0] = s.a;
+    out.points[1] = s.b;
+    const Vec2 d = s.b - s.a;
+    const float len = length(d);
+    if (len > 0.0f) {
+        const Vec2 dir{d.x / len, d.y / len};
+        out.axes[0] = Vec2{dir.y, -dir.x};  // the normal
+        out.axes[1] = dir;                  // the direction: a segment has no area
+        out.axis_count = 2;
+    }
+    return out;
+}
+
+}  // namespace detail
+
+namespace {
+detail::ConvexView view_of(const Polygon& p) { return {p.points.data(), p.count, p.normals.data(), p.count}; }
+detail::ConvexView view_of(const detail::SegmentAxes& s) { return {s.points, 2, s.axes, s.axis_count}; }
+}  // namespace
+
+Manifold collide(const Obb& a, const Obb& b) {
+    // 09-58 with the boxes' own axes: 2 + 2 candidate axes. A box's projection on an axis u
+    // is its centre's projection plus-minus the projected radius hx |ux.u| + hy |uy.u|, so
+    // no corner is projected one by one.
+    if (!finite(a) || !finite(b)) return {};
+    const Rot qa = Rot::from_angle(a.angle);
+    const Rot qb = Rot::from_angle(b.angle);
+    const Vec2 axes[4] = {{qa.c, qa.s}, {-qa.s, qa.c}, {qb.c, qb.s}, {-qb.s, qb.c}};
+    const Vec2 d = b.center - a.center;
+    float best = INFINITY;
+    Vec2 best_normal{1.0f, 0.0f};
+    for (const Vec2 u : axes) {
+        const float ra = a.half.x * std::fabs(dot(axes[0], u)) + a.half.y * std::fabs(dot(axes[1], u));
+        const float rb = b.half.x * std::fabs(dot(axes[2], u)) + b.half.y * std::fabs(dot(axes[3], u));
+        const float s = dot(d, u);
+        const float push_pos = ra + rb - s;  // normal u
+        const float push_neg = ra + rb + s;  // normal -u
+        if (!(push_pos >= 0.0f && push_neg >= 0.0f)) return {};
+        if (push_pos <= push_neg) {
+            if (push_pos < best) { best = push_pos; best_normal = u; }
+        } else if (push_neg < best) {
+            best = push_neg;
+            best_normal = -u;
+        }
+    }
+    return detail::hit_with(best, best_normal);
+}
+
+Manifold collide(const Aabb& a, const Obb& b) {
+    if (!finite(a)) return {};
+    const Obb box{(a.min + a.max) * 0.5f, (a.max - a.min) * 0.5f, 0.0f};
+    return collide(box, b);
+}
+
+Manifold collide(const Polygon& a, const Polygon& b) {
+    // 09-62: any convex shape, every edge normal of both.
+    if (!finite(a) || !finite(b)) return {};
+    return detail::sat_collide(view_of(a), view_of(b));
+}
+
+Manifold collide(const Polygon& a, const Segment& b) {
+    if (!finite(a) || !finite(b)) return {};
+    const auto s = detail::segment_axes(b);
+    return detail::sat_collide(view_of(a), view_of(s));
+}
+
+Manifold collide(const Segment& a, const Segment& b) {
+    if (!finite(a) || !finite(b)) return {};
+    const auto sa = detail::segment_axes(a);
+    const auto sb = detail::segment_axes(b);
+    return detail::sat_collide(view_of(sa), view_of(sb));
+}
+
+}  // namespace jostle

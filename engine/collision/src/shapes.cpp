@@ -1,0 +1,144 @@
+// Shape construction and bookkeeping: polygon validation (make_polygon), OBB corners,
+// conversions to polygons, bounds of every shape, and the shape kind names.
+#include <cmath>
+#include <string>
+
+#include "internal.h"
+
+namespace jostle {
+
+using detail::finite;
+
+std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* error) {
+    auto fail = [&](std::string why) -> std::optional<Polygon> {
+        if (error) *error = std::move(why);
+        return std::nullopt;
+    };
+    const int n = static_cast<int>(points.size());
+    if (n < 3 || n > kMaxPolygonVertices)
+        return fail("a polygon needs 3 to " + std::to_string(kMaxPolygonVertices) + " vertices, got " +
+                    std::to_string(points.size()));
+    for (int i = 0; i < n; ++i)
+        if (!finite(points[i])) return fail("polygon vertex " + std::to_string(i) + " is not a finite point");
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+            if (points[i] == points[j])
+                return fail("polygon vertices " + std::to_string(i) + " and " + std::to_string(j) + " are the same point");
+
+    // Twice the signed area decides the winding; store with positive turns.
+    float area2 = 0.0f;
+    for (int i = 0; i < n; ++i) area2 += cross(points[i], points[(i + 1) % n]);
+    if (!(area2 != 0.0f)) return fail("polygon has zero area (all vertices on one line)");
+
+    Polygon poly;
+    poly.count = n;
+    for (int i = 0; i < n; ++i) poly.points[i] = area2 > 0.0f ? points[i] : points[n - 1 - i];
+
+    for (int i = 0; i < n; ++i) {
+        const Vec2 p0 = poly.points[i];
+        const Vec2 e0 = poly.points[(i + 1) % n] - p0;
+        const Vec2 e1 = poly.points[(i + 2) % n] - poly.points[(i + 1) % n];
+        // Relative test: a turn of less than ~1e-6 rad is collinear within float precision.
+        const float turn = cross(e0, e1);
+        const int at = (area2 > 0.0f ? (i + 1) % n : n - 1 - (i + 1) % n);
+        if (std::fabs(turn) <= 1e-6f * length(e0) * length(e1))
+            return fail("polygon vertex " + std::to_string(at) + " is collinear with its neighbours");
+        if (turn < 0.0f) return fail("polygon is not convex at vertex " + std::to_string(at));
+        // Every vertex strictly inside this edge's half-plane: rejects self-intersecting stars,
+        // whose turns all have the same sign but which wind around twice.
+        for (int j = 0; j < n; ++j) {
+            if (j == i || j == (i + 1) % n) continue;
+            if (!(cross(e0, poly.points[j] - p0) > 0.0f))
+                return fail("polygon is not convex: it folds over itself at vertex " + std::to_string(at));
+        }
+        // Outward normal of a positively turning polygon: (e.y, -e.x).
+        poly.normals[i] = normalize_or(Vec2{e0.y, -e0.x}, Vec2{1.0f, 0.0f});
+    }
+    return poly;
+}
+
+std::array<Vec2, 4> corners(const Aabb& box) {
+    return {box.min, Vec2{box.max.x, box.min.y}, box.max, Vec2{box.min.x, box.max.y}};
+}
+
+std::array<Vec2, 4> corners(const Obb& box) {
+    const Rot q = Rot::from_angle(box.angle);
+    const Vec2 ux = rotate(q, Vec2{box.half.x, 0.0f});
+    const Vec2 uy = rotate(q, Vec2{0.0f, box.half.y});
+    // -x-y, +x-y, +x+y, -x+y: positive turns, like the AABB corners.
+    return {box.center - ux - uy, box.center + ux - uy, box.center + ux + uy, box.center - ux + uy};
+}
+
+namespace {
+// A polygon from 4 box corners (possibly degenerate: zero-size boxes are allowed as shapes,
+// so no validation; normals come from the box axes).
+Polygon box_polygon(const std::array<Vec2, 4>& c, Rot q) {
+    Polygon p;
+    p.count = 4;
+    for (int i = 0; i < 4; ++i) p.points[i] = c[i];
+    p.normals[0] = rotate(q, Vec2{0.0f, -1.0f});
+    p.normals[1] = rotate(q, Vec2{1.0f, 0.0f});
+    p.normals[2] = rotate(q, Vec2{0.0f, 1.0f});
+    p.normals[3] = rotate(q, Vec2{-1.0f, 0.0f});
+    return p;
+}
+}  // namespace
+
+Polygon to_polygon(const Obb& box) { return box_polygon(corners(box), Rot::from_angle(box.angle)); }
+Polygon to_polygon(const Aabb& box) { return box_polygon(corners(box), Rot{}); }
+
+namespace {
+Aabb bounds_of_points(const Vec2* p, int n) {
+    Aabb b{p[0], p[0]};
+    for (int i = 1; i < n; ++i) {
+        b.min = min(b.min, p[i]);
+        b.max = max(b.max, p[i]);
+    }
+    return b;
+}
+}  // namespace
+
+Aabb bounds(const Obb& box) {
+    // Projected radius on each world axis: |R| * half.
+    const Rot q = Rot::from_angle(box.angle);
+    const Vec2 r{std::fabs(q.c) * box.half.x + std::fabs(q.s) * box.half.y,
+                 std::fabs(q.s) * box.half.x + std::fabs(q.c) * box.half.y};
+    return {box.center - r, box.center + r};
+}
+Aabb bounds(const Polygon& poly) { return bounds_of_points(poly.points.data(), poly.count); }
+Aabb bounds(const Circle& c) {
+    const Vec2 r{c.radius, c.radius};
+    return {c.center - r, c.center + r};
+}
+Aabb bounds(const Segment& s) { return {min(s.a, s.b), max(s.a, s.b)}; }
+Aabb bounds(const PlacedMask& m) {
+    const Vec2 at{static_cast<float>(m.x), static_cast<float>(m.y)};
+    if (!m.mask) return {at, at};
+    return {at, at + Vec2{static_cast<float>(m.mask->width()), static_cast<float>(m.mask->height())}};
+}
+Aabb bounds(const Shape& s) {
+    return std::visit(
+        [](const auto& shape) -> Aabb {
+            if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, Aabb>)
+                return shape;
+            else
+                return bounds(shape);
+        },
+        s);
+}
+
+ShapeKind kind_of(const Shape& s) { return static_cast<ShapeKind>(s.index()); }
+
+const char* name_of(ShapeKind k) {
+    switch (k) {
+        case ShapeKind::aabb: return "aabb";
+        case ShapeKind::obb: return "obb";
+        case ShapeKind::polygon: return "polygon";
+        case ShapeKind::circle: return "circle";
+        case ShapeKind::segment: return "segment";
+        case ShapeKind::mask: return "mask";
+    }
+    return "unknown";
+}
+
+}  // namespace jostle
