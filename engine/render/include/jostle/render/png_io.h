@@ -1,0 +1,43 @@
+// jostle/render/png_io.h: PNG files as straight (not premultiplied) RGBA8 images, by libpng.
+// read_png accepts every PNG colour type and bit depth and converts it to RGBA8;
+// write_png_atomic writes a temporary file in the same folder and renames it over the target.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace jostle {
+
+// An image in memory: width * height pixels, row-major, top row first, 4 bytes per pixel
+// (R, G, B, A), straight alpha. An empty Image{} has no pixels.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;  // width * height * 4 bytes
+};
+
+// Limits on the images read_png accepts, checked from the PNG header before any pixel memory
+// is allocated: each side at most kMaxImageSide, and at most kMaxImagePixels in total
+// (64 Mi pixels = 256 MiB of RGBA).
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
+
+// Reads a PNG file. Palette, grey, grey + alpha, RGB, 1/2/4/8/16-bit and interlaced images
+// are converted to RGBA8: a tRNS chunk becomes alpha, images without alpha get alpha 255,
+// 16-bit channels are scaled to 8 bits (rounded). No gamma or colour-space conversion.
+// Throws jostle::InputError naming the file when it cannot be opened, is not a PNG, is corrupt
+// or truncated (bad CRC in a critical chunk, bad compressed data, missing chunks), or is larger
+// than the limits above.
+Image read_png(const std::string& path);
+
+// Writes `image` as an 8-bit RGBA PNG (zlib compression_level 0..9; 1 is fast and small
+// enough for frames). The data goes to a temporary file in the same folder, which is flushed,
+// synced and then renamed over `path`: a crash leaves either the old file or the complete new
+// one, never a half-written file. Throws jostle::InputError naming the path when the file
+// cannot be written (the temporary file is removed). A malformed image (a side < 1 or above
+// kMaxImageSide, more than kMaxImagePixels, rgba.size() != width * height * 4) or a level
+// outside 0..9 is a programming error (assert).
+void write_png_atomic(const std::string& path, const Image& image, int compression_level = 1);
+
+}  // namespace jostle
