@@ -38,13 +38,18 @@ Manifold collide(const Polygon& a, const Circle& b) {
     }
     if (max_sep > b.radius) return {};  // an edge normal separates: early out
     if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals[max_edge]);  // centre inside
-    int edge = 0;
-    const Vec2 p = closest_point_on_boundary(a, c, &edge);
-    const Vec2 d = c - p;
-    const float dist2 = dot(d, d);
+    // The nearest of the closest points on every edge, kept relative to c (d = c - p) so
+    // that shapes far from the origin keep the precision of their size.
+    Vec2 d{};
+    float dist2 = INFINITY;
+    for (int i = 0; i < a.count; ++i) {
+        const Vec2 rel = detail::offset_from_segment(a.points[i], a.points[(i + 1) % a.count], c);
+        const float d2 = dot(rel, rel);
+        if (d2 < dist2) { dist2 = d2; d = rel; }
+    }
     if (!(dist2 <= b.radius * b.radius)) return {};
     const float dist = std::sqrt(dist2);
-    return hit_with(b.radius - dist, dist > 0.0f ? Vec2{d.x / dist, d.y / dist} : a.normals[edge]);
+    return hit_with(b.radius - dist, Vec2{d.x / dist, d.y / dist});  // dist >= max_sep > 0
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {
@@ -126,8 +131,7 @@ Manifold collide(const Segment& a, const Circle& b) {
     // 09-87/88: the closest point p on the segment to c; hit when |p - c| <= r; the MTD has
     // direction p - c and length r - |p - c|. A centre on the segment leaves by its normal.
     if (!finite(a) || !finite(b)) return {};
-    const Vec2 p = closest_point(a, b.center);
-    const Vec2 d = b.center - p;
+    const Vec2 d = detail::offset_from_segment(a.a, a.b, b.center);
     const float dist2 = dot(d, d);
     if (!(dist2 <= b.radius * b.radius)) return {};
     const float dist = std::sqrt(dist2);

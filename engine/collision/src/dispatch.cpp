@@ -11,9 +11,14 @@ namespace {
 
 // Pairs without a typed function of their own: boxes become polygons for SAT.
 Manifold collide_any(const Aabb& a, const Polygon& b) { return collide(to_polygon(a), b); }
-Manifold collide_any(const Obb& a, const Polygon& b) { return collide(to_polygon(a), b); }
+// An OBB's corners are exact only relative to its centre, so the pair is solved there.
+Manifold collide_any(const Obb& a, const Polygon& b) {
+    return collide(detail::centred_polygon(a), detail::translated(b, -a.center));
+}
 Manifold collide_any(const Aabb& a, const Segment& b) { return collide(to_polygon(a), b); }
-Manifold collide_any(const Obb& a, const Segment& b) { return collide(to_polygon(a), b); }
+Manifold collide_any(const Obb& a, const Segment& b) {
+    return collide(detail::centred_polygon(a), Segment{b.a - a.center, b.b - a.center});
+}
 
 // Every unordered pair once, in the pair table's row order (A's kind <= B's kind).
 Manifold ordered(const Shape& a, const Shape& b) {
@@ -92,8 +97,9 @@ bool overlaps(const Shape& a, const Shape& b) {
     // The cheap yes/no where one exists; otherwise the full test's answer.
     if (const auto* x = std::get_if<Aabb>(&a))
         if (const auto* y = std::get_if<Aabb>(&b)) return overlaps(*x, *y);
-    if (const auto* x = std::get_if<PlacedMask>(&a))
-        if (const auto* y = std::get_if<PlacedMask>(&b)) return overlaps(*x, *y);
+    // A mask stops at its first shared pixel instead of searching for the MTD.
+    if (const auto* x = std::get_if<PlacedMask>(&a)) return first_overlap(*x, b).has_value();
+    if (const auto* y = std::get_if<PlacedMask>(&b)) return first_overlap(*y, a).has_value();
     return collide(a, b).hit;
 }
 

@@ -33,6 +33,28 @@ inline Manifold flipped(Manifold m) {
 
 inline float clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
+// p minus the closest point of segment a-b to p (09-85), formed from differences so that it
+// keeps the precision of the distance even far from the origin.
+inline Vec2 offset_from_segment(Vec2 a, Vec2 b, Vec2 p) {
+    const Vec2 d = b - a;
+    const Vec2 f = p - a;
+    const float dd = dot(d, d);
+    if (!(dd > 0.0f)) return f;
+    const float t = clamp(dot(f, d) / dd, 0.0f, 1.0f);
+    return f - t * d;
+}
+
+// The polygon moved by `offset` (normals unchanged). Used to work near the origin: an OBB's
+// corners far from the origin are not floats, but relative to its centre they are precise.
+inline Polygon translated(const Polygon& p, Vec2 offset) {
+    Polygon out = p;
+    for (int i = 0; i < p.count; ++i) out.points[i] = p.points[i] + offset;
+    return out;
+}
+
+// The OBB's polygon with its centre at the origin.
+inline Polygon centred_polygon(const Obb& box) { return to_polygon(Obb{{}, box.half, box.angle}); }
+
 // A convex point set for SAT: its vertices and the candidate separating axes it brings
 // (unit edge normals; a segment also brings its direction, since it has no area).
 struct ConvexView {

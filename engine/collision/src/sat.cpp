@@ -12,10 +12,12 @@ using detail::finite;
 namespace detail {
 
 // Projection of a point set on an axis (09-51: project every point, keep min and max).
-static void project(const ConvexView& v, Vec2 axis, float& lo, float& hi) {
-    lo = hi = dot(v.points[0], axis);
+// Points are taken relative to `origin` (a vertex of one shape), so that shapes far from the
+// world origin are projected with the precision of their size, not of their position.
+static void project(const ConvexView& v, Vec2 axis, Vec2 origin, float& lo, float& hi) {
+    lo = hi = dot(v.points[0] - origin, axis);
     for (int i = 1; i < v.count; ++i) {
-        const float d = dot(v.points[i], axis);
+        const float d = dot(v.points[i] - origin, axis);
         lo = d < lo ? d : lo;
         hi = d > hi ? d : hi;
     }
@@ -24,12 +26,13 @@ static void project(const ConvexView& v, Vec2 axis, float& lo, float& hi) {
 Manifold sat_collide(const ConvexView& a, const ConvexView& b) {
     float best = INFINITY;
     Vec2 best_normal{1.0f, 0.0f};
+    const Vec2 origin = a.points[0];
     auto test_axes = [&](const ConvexView& owner) {
         for (int i = 0; i < owner.axis_count; ++i) {
             const Vec2 u = owner.axes[i];
             float a_lo, a_hi, b_lo, b_hi;
-            project(a, u, a_lo, a_hi);
-            project(b, u, b_lo, b_hi);
+            project(a, u, origin, a_lo, a_hi);
+            project(b, u, origin, b_lo, b_hi);
             // 09-60: the push that separates along +u or -u. Taking the smaller of the two
             // (rather than the overlap length) is what makes containment come out right.
             const float push_pos = a_hi - b_lo;  // move A by -push_pos*u: normal u
@@ -75,20 +78,17 @@ detail::ConvexView view_of(const Polygon& p) { return {p.points.data(), p.count,
 detail::ConvexView view_of(const detail::SegmentAxes& s) { return {s.points, 2, s.axes, s.axis_count}; }
 }  // namespace
 
-Manifold collide(const Obb& a, const Obb& b) {
-    // 09-58 with the boxes' own axes: 2 + 2 candidate axes. A box's projection on an axis u
-    // is its centre's projection plus-minus the projected radius hx |ux.u| + hy |uy.u|, so
-    // no corner is projected one by one.
-    if (!finite(a) || !finite(b)) return {};
-    const Rot qa = Rot::from_angle(a.angle);
-    const Rot qb = Rot::from_angle(b.angle);
+namespace {
+// 09-58 with the boxes' own axes: 2 + 2 candidate axes. A box's projection on an axis u is
+// its centre's projection plus-minus the projected radius hx |ux.u| + hy |uy.u|, so no
+// corner is projected one by one. d is B's centre minus A's centre.
+Manifold box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
     const Vec2 axes[4] = {{qa.c, qa.s}, {-qa.s, qa.c}, {qb.c, qb.s}, {-qb.s, qb.c}};
-    const Vec2 d = b.center - a.center;
     float best = INFINITY;
     Vec2 best_normal{1.0f, 0.0f};
     for (const Vec2 u : axes) {
-        const float ra = a.half.x * std::fabs(dot(axes[0], u)) + a.half.y * std::fabs(dot(axes[1], u));
-        const float rb = b.half.x * std::fabs(dot(axes[2], u)) + b.half.y * std::fabs(dot(axes[3], u));
+        const float ra = half_a.x * std::fabs(dot(axes[0], u)) + half_a.y * std::fabs(dot(axes[1], u));
+        const float rb = half_b.x * std::fabs(dot(axes[2], u)) + half_b.y * std::fabs(dot(axes[3], u));
         const float s = dot(d, u);
         const float push_pos = ra + rb - s;  // normal u
         const float push_neg = ra + rb + s;  // normal -u
@@ -102,11 +102,19 @@ Manifold collide(const Obb& a, const Obb& b) {
     }
     return detail::hit_with(best, best_normal);
 }
+}  // namespace
+
+Manifold collide(const Obb& a, const Obb& b) {
+    if (!finite(a) || !finite(b)) return {};
+    return box_box(a.half, Rot::from_angle(a.angle), b.half, Rot::from_angle(b.angle), b.center - a.center);
+}
 
 Manifold collide(const Aabb& a, const Obb& b) {
-    if (!finite(a)) return {};
-    const Obb box{(a.min + a.max) * 0.5f, (a.max - a.min) * 0.5f, 0.0f};
-    return collide(box, b);
+    // The AABB as a box at angle 0. Its centre (min + max) / 2 may not be a float far from
+    // the origin, so the offset is formed from differences instead.
+    if (!finite(a) || !finite(b)) return {};
+    const Vec2 half = (a.max - a.min) * 0.5f;
+    return box_box(half, Rot{}, b.half, Rot::from_angle(b.angle), (b.center - a.min) - half);
 }
 
 Manifold collide(const Polygon& a, const Polygon& b) {

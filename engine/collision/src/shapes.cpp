@@ -25,9 +25,11 @@ std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* e
             if (points[i] == points[j])
                 return fail("polygon vertices " + std::to_string(i) + " and " + std::to_string(j) + " are the same point");
 
-    // Twice the signed area decides the winding; store with positive turns.
+    // Twice the signed area decides the winding; store with positive turns. Summed relative
+    // to the first vertex: absolute coordinates far from the origin would drown the area in
+    // the rounding of their products.
     float area2 = 0.0f;
-    for (int i = 0; i < n; ++i) area2 += cross(points[i], points[(i + 1) % n]);
+    for (int i = 1; i + 1 < n; ++i) area2 += cross(points[i] - points[0], points[i + 1] - points[0]);
     if (!(area2 != 0.0f)) return fail("polygon has zero area (all vertices on one line)");
 
     Polygon poly;

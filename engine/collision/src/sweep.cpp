@@ -29,25 +29,27 @@ SweepHit overlap_at_start(const Circle& moving, const Manifold& shape_vs_circle)
 // shape grown by r, whose boundary is every edge pushed out by r plus a circle of radius r
 // at every vertex.
 SweepHit sweep_rounded(const Circle& moving, Vec2 v, const Vec2* points, const Vec2* normals, int count) {
+    // Worked in coordinates relative to the circle's start, so that a shape far from the
+    // origin keeps the precision of its size.
     const Vec2 from = moving.center;
-    const Vec2 to = from + v;
     const float r = moving.radius;
     CastHit best{};
     Vec2 best_normal{};
     for (int i = 0; i < count; ++i) {
         const Vec2 n = normals[i];
         if (!(dot(v, n) < 0.0f)) continue;  // only faces the centre moves toward
-        const Vec2 a = points[i] + r * n;
-        const Vec2 b = points[(i + 1) % count] + r * n;
-        const CastHit h = detail::cast_segment(from, to, a, b);
+        const Vec2 a = (points[i] - from) + r * n;
+        const Vec2 b = (points[(i + 1) % count] - from) + r * n;
+        const CastHit h = detail::cast_segment({}, v, a, b);
         if (h.hit && (!best.hit || h.t < best.t)) { best = h; best_normal = n; }
     }
     if (r > 0.0f) {
         for (int i = 0; i < count; ++i) {
-            const CastHit h = detail::cast_circle(from, to, points[i], r);
+            const Vec2 p = points[i] - from;
+            const CastHit h = detail::cast_circle({}, v, p, r);
             if (h.hit && (!best.hit || h.t < best.t)) {
                 best = h;
-                best_normal = normalize_or(h.point - points[i], Vec2{1.0f, 0.0f});
+                best_normal = normalize_or(h.point - p, Vec2{1.0f, 0.0f});
             }
         }
     }
@@ -111,8 +113,9 @@ bool swept_overlaps(const Circle& moving, Vec2 v, const Circle& fixed) {
     if (collide(cap.start, fixed).hit || collide(cap.end, fixed).hit) return true;
     std::string ignored;
     if (const auto rect = make_polygon(cap.rectangle, &ignored)) return collide(*rect, fixed).hit;
-    // No area (zero radius or no motion): the rectangle is the path itself.
-    return collide(Segment{moving.center, moving.center + v}, fixed).hit;
+    // No area (zero radius or no motion): the path itself against the fixed circle grown by
+    // the moving one's radius.
+    return collide(Segment{moving.center, moving.center + v}, Circle{fixed.center, fixed.radius + moving.radius}).hit;
 }
 
 SweepHit sweep(const Circle& moving, Vec2 v, const Polygon& poly) {
@@ -128,8 +131,11 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Aabb& box) {
 }
 
 SweepHit sweep(const Circle& moving, Vec2 v, const Obb& box) {
+    // Solved with the box's centre at the origin, where its corners are precise.
     if (!finite(box)) return {};
-    return sweep(moving, v, to_polygon(box));
+    SweepHit h = sweep(Circle{moving.center - box.center, moving.radius}, v, detail::centred_polygon(box));
+    if (h.hit) h.point += box.center;
+    return h;
 }
 
 SweepHit sweep(const Circle& moving, Vec2 v, const Segment& seg) {

@@ -1,0 +1,1046 @@
+// mask.cpp: 1-bit pixel masks (slides 09-0 to 09-5 and 09-30): the bit-packed Mask; mask vs
+// mask overlap, first shared pixel, count and integer MTD; the same against the other shapes
+// by the pixel rule; the nearest point of a mask; and the lecture's loop, corrected, in reference::.
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <variant>
+
+#include "jostle/collision.h"
+#include "jostle/core/error.h"
+
+namespace jostle {
+
+namespace {
+
+using i64 = std::int64_t;
+using u64 = std::uint64_t;
+
+bool usable(const Mask* m) { return m != nullptr && m->width() > 0 && m->height() > 0; }
+
+u64 low_bits(int n) { return n >= 64 ? ~u64{0} : (u64{1} << n) - 1; }
+
+std::string describe_char(char ch) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if (byte >= 0x20 && byte < 0x7f) return std::string("'") + ch + "'";
+    static const char* const digits = "0123456789abcdef";
+    return std::string("byte 0x") + digits[byte >> 4] + digits[byte & 15];
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// Mask
+// ---------------------------------------------------------------------------------------
+
+Mask::Mask(int width, int height) {
+    JOSTLE_ASSERT(width >= 0 && width <= kMaxMaskSide && height >= 0 && height <= kMaxMaskSide,
+                  "mask width and height must be in 0..kMaxMaskSide");
+    width_ = width;
+    height_ = height;
+    words_per_row_ = (width + 63) / 64;
+    bits_.assign(static_cast<std::size_t>(words_per_row_) * static_cast<std::size_t>(height), 0);
+}
+
+// An empty list gives a 0 x 0 mask and empty rows a 0-wide mask: both are valid and hit
+// nothing. Too many rows or pixels is an error, like a bad character or a ragged row.
+std::optional<Mask> Mask::from_rows(std::span<const std::string_view> rows, std::string* error) {
+    auto fail = [error](std::string message) -> std::optional<Mask> {
+        if (error != nullptr) *error = std::move(message);
+        return std::nullopt;
+    };
+    const std::string limit = std::to_string(kMaxMaskSide);
+    if (rows.size() > static_cast<std::size_t>(kMaxMaskSide))
+        return fail(std::to_string(rows.size()) + " rows, at most " + limit);
+    const std::size_t w = rows.empty() ? 0 : rows[0].size();
+    if (w > static_cast<std::size_t>(kMaxMaskSide))
+        return fail("row 1 has " + std::to_string(w) + " pixels, at most " + limit);
+    Mask mask(static_cast<int>(w), static_cast<int>(rows.size()));
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const std::string_view line = rows[r];
+        if (line.size() != w)
+            return fail("row " + std::to_string(r + 1) + " has " + std::to_string(line.size()) +
+                        " pixels, expected " + std::to_string(w) + " like row 1");
+        for (std::size_t c = 0; c < w; ++c) {
+            if (line[c] == '#') {
+                mask.set(static_cast<int>(c), static_cast<int>(r), true);
+            } else if (line[c] != '.') {
+                return fail("row " + std::to_string(r + 1) + ", column " + std::to_string(c + 1) +
+                            ": expected '#' or '.', got " + describe_char(line[c]));
+            }
+        }
+    }
+    return mask;
+}
+
+Mask Mask::from_alpha(const std::uint8_t* rgba, int width, int height, std::uint8_t threshold) {
+    Mask mask(width, height);
+    JOSTLE_ASSERT(rgba != nullptr || width == 0 || height == 0, "from_alpha needs width*height pixels");
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t at = (static_cast<std::size_t>(y) * width + x) * 4 + 3;  // alpha, 09-4
+            if (rgba[at] > threshold) mask.set(x, y, true);
+        }
+    }
+    return mask;
+}
+
+bool Mask::get(int x, int y) const {
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return false;
+    return ((row(y)[x >> 6] >> (x & 63)) & 1u) != 0;
+}
+
+void Mask::set(int x, int y, bool value) {
+    JOSTLE_ASSERT(x >= 0 && y >= 0 && x < width_ && y < height_, "pixel outside the mask");
+    u64& word = bits_[static_cast<std::size_t>(y) * words_per_row_ + (x >> 6)];
+    const u64 bit = u64{1} << (x & 63);
+    word = value ? (word | bit) : (word & ~bit);
+}
+
+int Mask::count() const {
+    int n = 0;
+    for (const u64 w : bits_) n += std::popcount(w);
+    return n;
+}
+
+std::vector<std::string> Mask::to_rows() const {
+    std::vector<std::string> out(static_cast<std::size_t>(height_), std::string(static_cast<std::size_t>(width_), '.'));
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x)
+            if (get(x, y)) out[static_cast<std::size_t>(y)][static_cast<std::size_t>(x)] = '#';
+    return out;
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// Bit-level helpers
+// ---------------------------------------------------------------------------------------
+
+// 64 pixels of a row starting at pixel `start` (>= 0): bit k is pixel start + k. Pixels past
+// the row read as clear and words past the row are never read (the sanitizer build checks).
+u64 bits_at(const u64* row, int words, i64 start) {
+    const i64 k = start >> 6;
+    const int shift = static_cast<int>(start & 63);
+    u64 out = k < words ? row[k] >> shift : 0;
+    if (shift != 0 && k + 1 < words) out |= row[k + 1] << (64 - shift);
+    return out;
+}
+
+// The set pixels' rectangle, in the mask's own pixels, inclusive; x1 < x0 when none is set.
+struct PixelBox {
+    int x0 = 0;
+    int y0 = 0;
+    int x1 = -1;
+    int y1 = -1;
+    bool empty() const { return x1 < x0; }
+};
+
+PixelBox set_pixel_box(const Mask& m) {
+    PixelBox box{m.width(), m.height(), -1, -1};
+    for (int y = 0; y < m.height(); ++y) {
+        const u64* row = m.row(y);
+        for (int k = 0; k < m.words_per_row(); ++k) {
+            if (row[k] == 0) continue;
+            box.x0 = std::min(box.x0, k * 64 + std::countr_zero(row[k]));
+            box.x1 = std::max(box.x1, k * 64 + 63 - std::countl_zero(row[k]));
+            box.y0 = std::min(box.y0, y);
+            box.y1 = y;
+        }
+    }
+    return box.x1 < 0 ? PixelBox{} : box;
+}
+
+// The last set pixel at or before column c (0 <= c < width), or -1.
+int last_set_at_or_before(const u64* row, int c) {
+    int k = c >> 6;
+    u64 w = row[k] & (~u64{0} >> (63 - (c & 63)));
+    for (;;) {
+        if (w != 0) return k * 64 + 63 - std::countl_zero(w);
+        if (--k < 0) return -1;
+        w = row[k];
+    }
+}
+
+// The first set pixel at or after column c (0 <= c < width), or -1.
+int first_set_at_or_after(const u64* row, int words, int c) {
+    int k = c >> 6;
+    u64 w = row[k] & (~u64{0} << (c & 63));
+    for (;;) {
+        if (w != 0) return k * 64 + std::countr_zero(w);
+        if (++k >= words) return -1;
+        w = row[k];
+    }
+}
+
+// A mask at a world position; i64 so that a translated position never overflows.
+struct Placed {
+    const Mask* m = nullptr;
+    i64 x = 0;
+    i64 y = 0;
+};
+
+Placed placed(const PlacedMask& p) { return {p.mask, p.x, p.y}; }
+
+// 09-30: AND the two masks over the intersection of their rectangles only, 64 pixels per
+// word: one mask starts at its column 0 there and is read word-aligned, the other is shifted
+// into place. visit(world y, world x of bit 0, word) gets every non-zero word, rows top to
+// bottom (bottom to top when `upward`), words left to right; returning true stops the walk.
+template <class Visit>
+bool visit_shared_words(const Placed& a, const Placed& b, bool upward, Visit&& visit) {
+    const i64 x0 = std::max(a.x, b.x);
+    const i64 x1 = std::min(a.x + a.m->width(), b.x + b.m->width());
+    const i64 y0 = std::max(a.y, b.y);
+    const i64 y1 = std::min(a.y + a.m->height(), b.y + b.m->height());
+    if (x0 >= x1 || y0 >= y1) return false;
+    const i64 len = x1 - x0;
+    const i64 sa = x0 - a.x;
+    const i64 sb = x0 - b.x;
+    const i64 chunks = (len + 63) / 64;
+    const u64 last_mask = low_bits(static_cast<int>(len - (chunks - 1) * 64));
+    const int wa = a.m->words_per_row();
+    const int wb = b.m->words_per_row();
+    for (i64 n = 0; n < y1 - y0; ++n) {
+        const i64 y = upward ? y1 - 1 - n : y0 + n;
+        const u64* ra = a.m->row(static_cast<int>(y - a.y));
+        const u64* rb = b.m->row(static_cast<int>(y - b.y));
+        for (i64 c = 0; c < chunks; ++c) {
+            u64 w = bits_at(ra, wa, sa + 64 * c) & bits_at(rb, wb, sb + 64 * c);
+            if (c == chunks - 1) w &= last_mask;  // bits past a width are clear; this is belt and braces
+            if (w != 0 && visit(y, x0 + 64 * c, w)) return true;
+        }
+    }
+    return false;
+}
+
+// ---------------------------------------------------------------------------------------
+// The integer MTD search, shared by every mask pair
+// ---------------------------------------------------------------------------------------
+
+// A candidate translation T of A, ranked by the mask MTD rule: shorter first; then the larger
+// dot(T, centre A - centre B), which pushes A away from B's centre; then a fixed order: more
+// horizontal first (smaller |dy|), then smaller dx, then smaller dy. So a pair with equal
+// centres pushes A toward -x (normal {1, 0}), like coincident circles.
+template <class Dot>
+struct Candidate {
+    i64 dx = 0;
+    i64 dy = 0;
+    i64 r2 = 0;
+    Dot dot{};
+};
+
+template <class Dot>
+bool ranks_before(const Candidate<Dot>& a, const Candidate<Dot>& b) {
+    if (a.r2 != b.r2) return a.r2 < b.r2;
+    if (a.dot != b.dot) return a.dot > b.dot;
+    const i64 ady = a.dy < 0 ? -a.dy : a.dy;
+    const i64 bdy = b.dy < 0 ? -b.dy : b.dy;
+    if (ady != bdy) return ady < bdy;
+    if (a.dx != b.dx) return a.dx < b.dx;
+    return a.dy < b.dy;
+}
+
+// hit, depth = |T|, normal = -T / |T| (from A toward B): mtd() gives T back.
+Manifold manifold_from(double dx, double dy) {
+    const double len = std::sqrt(dx * dx + dy * dy);
+    Manifold out;
+    out.hit = true;
+    out.depth = static_cast<float>(len);
+    // 0 - v rather than -v: a zero component is +0, never -0 (state hashes read the bytes).
+    out.normal = {static_cast<float>(0.0 - dx / len), static_cast<float>(0.0 - dy / len)};
+    return out;
+}
+
+Manifold manifold_from(i64 dx, i64 dy) { return manifold_from(static_cast<double>(dx), static_cast<double>(dy)); }
+
+// A pure-axis translation known to leave no shared pixel: it bounds the search.
+struct AxisPush {
+    i64 dx = 0;
+    i64 dy = 0;
+    i64 length() const { return std::abs(dx) + std::abs(dy); }
+};
+
+// The shortest free translation (09-31's MTD on the integer grid). Enumerating rings of equal
+// dx^2 + dy^2 outward would test every translation shorter than the answer; instead, columns
+// dx = 0, 1, -1, 2, -2, ... while dx^2 <= best: in a column only the smallest free |dy| can
+// win, so scan down and up from dy = 0 and stop at the first free one or past the best length
+// so far. The best under ranks_before is the same answer the rings give (ties included), with
+// fewer tests: a problem may report a jump, that many translations on in the scan direction
+// being certainly blocked. The bound is a free pure-axis push, so the search always ends at or
+// before it; work grows with the answer, not with the bound. No allocation.
+// Problem: bool blocked(i64 dx, i64 dy, int dir, i64& jump); Dot dot(i64 dx, i64 dy).
+template <class Problem>
+Manifold search_mtd(const Problem& p, AxisPush bound) {
+    using Dot = decltype(p.dot(0, 0));
+    const i64 limit = bound.length();
+    Candidate<Dot> best;
+    best.r2 = limit * limit;
+    bool found = false;
+    auto consider = [&](i64 dx, i64 dy) {
+        const Candidate<Dot> c{dx, dy, dx * dx + dy * dy, p.dot(dx, dy)};
+        if (!found || ranks_before(c, best)) {
+            best = c;
+            found = true;
+        }
+    };
+    for (i64 m = 0; m * m <= best.r2; ++m) {
+        for (int side = 0; side < (m == 0 ? 1 : 2); ++side) {
+            const i64 dx = side == 0 ? m : -m;
+            i64 jump = 1;
+            if (!p.blocked(dx, 0, +1, jump)) {
+                consider(dx, 0);
+                continue;
+            }
+            for (i64 k = jump; dx * dx + k * k <= best.r2;) {
+                if (!p.blocked(dx, k, +1, jump)) {
+                    consider(dx, k);
+                    break;
+                }
+                k += jump;
+            }
+            for (i64 k = 1; dx * dx + k * k <= best.r2;) {
+                if (!p.blocked(dx, -k, -1, jump)) {
+                    consider(dx, -k);
+                    break;
+                }
+                k += jump;
+            }
+        }
+    }
+    // The bound itself is free, so `found` always holds; the fallback only keeps this total.
+    return found ? manifold_from(best.dx, best.dy) : manifold_from(bound.dx, bound.dy);
+}
+
+// Mask vs mask: A moves, B stays.
+struct MaskPairProblem {
+    Placed a;
+    Placed b;
+    PixelBox box_a;  // set pixels, own coordinates
+    PixelBox box_b;
+    i64 cx2 = 0;  // 2 * (centre A - centre B), exact
+    i64 cy2 = 0;
+
+    i64 dot(i64 dx, i64 dy) const { return dx * cx2 + dy * cy2; }
+
+    bool blocked(i64 dx, i64 dy, int dir, i64& jump) const {
+        jump = 1;
+        const i64 ax = a.x + dx;
+        const i64 ay = a.y + dy;
+        // The set pixels' rectangles apart: free without reading a word.
+        if (ax + box_a.x0 > b.x + box_b.x1 || ax + box_a.x1 < b.x + box_b.x0 ||
+            ay + box_a.y0 > b.y + box_b.y1 || ay + box_a.y1 < b.y + box_b.y0)
+            return false;
+        i64 wx = 0;
+        i64 wy = 0;
+        const bool hit = visit_shared_words(Placed{a.m, ax, ay}, b, dir < 0, [&](i64 y, i64 x, u64 w) {
+            wx = x + std::countr_zero(w);
+            wy = y;
+            return true;
+        });
+        if (!hit) return false;
+        // A's pixel on (wx, wy) stays on B's pixels while B's column runs on in the scan direction.
+        const int bx = static_cast<int>(wx - b.x);
+        const int by = static_cast<int>(wy - b.y);
+        int run = 1;
+        while (b.m->get(bx, by + dir * run)) ++run;
+        jump = run;
+        return true;
+    }
+};
+
+// ---------------------------------------------------------------------------------------
+// The other shapes as pixel regions (the pair table's "mask" rule)
+// ---------------------------------------------------------------------------------------
+// Each region gives: the pixel rule meets(left, top) for the pixel square with that top-left
+// corner; row_range(top), the x-range where the shape meets the row's test line (solid: the
+// centre line y = top + 0.5) or band (segment: top <= y <= top + 1); for solid shapes (kSolid)
+// column_range(x), the vertical chord at x, and top_x / bottom_x, where the chord reaches
+// highest / lowest; bounds; a centre for the tie rule. kNear and kFar give the
+// part of a pixel the rule looks at along an axis: its centre (0.5, 0.5) or its square (0, 1).
+// Tests run in double on float inputs: exact for coordinates on a fine binary grid, so pixel
+// centres on a boundary count as inside exactly as the closed shapes require.
+
+struct Bounds {
+    double min_x = 0.0;
+    double min_y = 0.0;
+    double max_x = 0.0;
+    double max_y = 0.0;
+};
+
+// A convex solid shape (Aabb, Obb, Polygon) as closed half-planes n.p <= c.
+struct ConvexRegion {
+    static constexpr bool kSolid = true;
+    static constexpr double kNear = 0.5;
+    static constexpr double kFar = 0.5;
+    int count = 0;
+    std::array<double, kMaxPolygonVertices> nx{};
+    std::array<double, kMaxPolygonVertices> ny{};
+    std::array<double, kMaxPolygonVertices> c{};
+    Bounds bounds;
+    double centre_x = 0.0;
+    double centre_y = 0.0;
+    double top_x = 0.0;
+    double bottom_x = 0.0;
+
+    void add(double px, double py, double pc) {
+        nx[static_cast<std::size_t>(count)] = px;
+        ny[static_cast<std::size_t>(count)] = py;
+        c[static_cast<std::size_t>(count)] = pc;
+        ++count;
+    }
+    bool contains(double px, double py) const {
+        for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i)
+            if (!(nx[i] * px + ny[i] * py <= c[i])) return false;
+        return true;
+    }
+    bool meets(double left, double top) const { return contains(left + 0.5, top + 0.5); }
+    // A plane with nx == 0 decides the row exactly as contains() does; the others give the
+    // range approximately, and the caller settles its ends with meets().
+    bool row_range(double top, double& lo, double& hi) const {
+        const double py = top + 0.5;
+        lo = -std::numeric_limits<double>::infinity();
+        hi = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
+            if (nx[i] == 0.0) {
+                if (!(ny[i] * py <= c[i])) return false;
+            } else if (nx[i] > 0.0) {
+                hi = std::min(hi, (c[i] - ny[i] * py) / nx[i]);
+            } else {
+                lo = std::max(lo, (c[i] - ny[i] * py) / nx[i]);
+            }
+        }
+        return true;
+    }
+    bool column_range(double px, double& lo, double& hi) const {
+        lo = -std::numeric_limits<double>::infinity();
+        hi = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
+            if (ny[i] > 0.0) hi = std::min(hi, (c[i] - nx[i] * px) / ny[i]);
+            else if (ny[i] < 0.0) lo = std::max(lo, (c[i] - nx[i] * px) / ny[i]);
+        }
+        return true;
+    }
+};
+
+struct DiscRegion {
+    static constexpr bool kSolid = true;
+    static constexpr double kNear = 0.5;
+    static constexpr double kFar = 0.5;
+    double cx = 0.0;
+    double cy = 0.0;
+    double r = 0.0;
+    Bounds bounds;
+    double centre_x = 0.0;
+    double centre_y = 0.0;
+    double top_x = 0.0;
+    double bottom_x = 0.0;
+
+    bool meets(double left, double top) const {
+        const double dx = left + 0.5 - cx;
+        const double dy = top + 0.5 - cy;
+        return dx * dx + dy * dy <= r * r;
+    }
+    // Empty exactly when meets() is false for the whole row: dx^2 + dy^2 >= dy^2 > r^2.
+    bool row_range(double top, double& lo, double& hi) const {
+        const double dy = top + 0.5 - cy;
+        const double room = r * r - dy * dy;
+        if (room < 0.0) return false;
+        const double s = std::sqrt(room);
+        lo = cx - s;
+        hi = cx + s;
+        return true;
+    }
+    bool column_range(double px, double& lo, double& hi) const {
+        const double dx = px - cx;
+        const double room = std::max(0.0, r * r - dx * dx);
+        const double s = std::sqrt(room);
+        lo = cy - s;
+        hi = cy + s;
+        return true;
+    }
+};
+
+// A segment meets a pixel when it touches the pixel's closed square: SAT with the axes x, y
+// and the segment's normal (the square's corners not all strictly on one side).
+struct SegmentRegion {
+    static constexpr bool kSolid = false;
+    static constexpr double kNear = 0.0;
+    static constexpr double kFar = 1.0;
+    double ax = 0.0;
+    double ay = 0.0;
+    double bx = 0.0;
+    double by = 0.0;
+    Bounds bounds;
+    double centre_x = 0.0;
+    double centre_y = 0.0;
+
+    bool meets(double left, double top) const {
+        if (bounds.max_x < left || bounds.min_x > left + 1.0 || bounds.max_y < top || bounds.min_y > top + 1.0)
+            return false;
+        const double ex = bx - ax;
+        const double ey = by - ay;
+        bool below = false;
+        bool above = false;
+        const std::array<double, 4> xs{left, left + 1.0, left + 1.0, left};
+        const std::array<double, 4> ys{top, top, top + 1.0, top + 1.0};
+        for (std::size_t i = 0; i < 4; ++i) {
+            const double s = ex * (ys[i] - ay) - ey * (xs[i] - ax);
+            below = below || s <= 0.0;
+            above = above || s >= 0.0;
+        }
+        return below && above;
+    }
+    // The part of the segment inside the band top <= y <= top + 1: emptiness is exact, the
+    // x-range approximate (the caller widens it by a column and settles the ends).
+    bool row_range(double top, double& lo, double& hi) const {
+        if (bounds.max_y < top || bounds.min_y > top + 1.0) return false;
+        if (ay == by) {
+            lo = bounds.min_x;
+            hi = bounds.max_x;
+            return true;
+        }
+        double t0 = (top - ay) / (by - ay);
+        double t1 = (top + 1.0 - ay) / (by - ay);
+        if (t0 > t1) std::swap(t0, t1);
+        t0 = std::clamp(t0, 0.0, 1.0);
+        t1 = std::clamp(t1, 0.0, 1.0);
+        const double x0 = ax + t0 * (bx - ax);
+        const double x1 = ax + t1 * (bx - ax);
+        lo = std::min(x0, x1);
+        hi = std::max(x0, x1);
+        return true;
+    }
+};
+
+// Builders: a shape with a NaN or infinite coordinate (or a negative radius) is no region,
+// so every query against it is a miss.
+std::optional<ConvexRegion> region_of(const Aabb& box) {
+    if (!is_finite(box.min) || !is_finite(box.max)) return std::nullopt;
+    ConvexRegion r;
+    const double x0 = box.min.x, y0 = box.min.y, x1 = box.max.x, y1 = box.max.y;
+    r.add(1.0, 0.0, x1);
+    r.add(-1.0, 0.0, -x0);
+    r.add(0.0, 1.0, y1);
+    r.add(0.0, -1.0, -y0);
+    r.bounds = {x0, y0, x1, y1};
+    r.centre_x = 0.5 * (x0 + x1);
+    r.centre_y = 0.5 * (y0 + y1);
+    r.top_x = r.centre_x;
+    r.bottom_x = r.centre_x;
+    return r;
+}
+
+std::optional<ConvexRegion> region_of(const Obb& box) {
+    if (!is_finite(box.center) || !is_finite(box.half) || !std::isfinite(box.angle)) return std::nullopt;
+    const Rot q = Rot::from_angle(box.angle);  // the same float rotation as the rest of the module
+    const double ux = q.c, uy = q.s, vx = -q.s, vy = q.c;
+    const double cx = box.center.x, cy = box.center.y, hx = box.half.x, hy = box.half.y;
+    const double cu = ux * cx + uy * cy;
+    const double cv = vx * cx + vy * cy;
+    ConvexRegion r;
+    r.add(ux, uy, cu + hx);
+    r.add(-ux, -uy, -cu + hx);
+    r.add(vx, vy, cv + hy);
+    r.add(-vx, -vy, -cv + hy);
+    const double ex = std::abs(ux) * hx + std::abs(vx) * hy;
+    const double ey = std::abs(uy) * hx + std::abs(vy) * hy;
+    r.bounds = {cx - ex, cy - ey, cx + ex, cy + ey};
+    r.centre_x = cx;
+    r.centre_y = cy;
+    // The lowest corner is centre + (+-u hx) + (+-v hy) with the signs of uy and vy; the top
+    // one is opposite.
+    const double sx = (uy >= 0.0 ? ux : -ux) * hx + (vy >= 0.0 ? vx : -vx) * hy;
+    r.top_x = cx - sx;
+    r.bottom_x = cx + sx;
+    return r;
+}
+
+// Either winding is accepted; fewer than 3 or more than 16 points, or no area, is a miss.
+std::optional<ConvexRegion> region_of(const Polygon& poly) {
+    if (poly.count < 3 || poly.count > kMaxPolygonVertices) return std::nullopt;
+    const auto n = static_cast<std::size_t>(poly.count);
+    double area2 = 0.0;
+    Bounds b{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+             -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    double sx = 0.0;
+    double sy = 0.0;
+    Vec2 top = poly.points[0];
+    Vec2 bottom = poly.points[0];
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 p = poly.points[i];
+        const Vec2 p2 = poly.points[(i + 1) % n];
+        if (!is_finite(p)) return std::nullopt;
+        if (p.y < top.y) top = p;
+        if (p.y > bottom.y) bottom = p;
+        area2 += static_cast<double>(p.x) * p2.y - static_cast<double>(p.y) * p2.x;
+        b = {std::min<double>(b.min_x, p.x), std::min<double>(b.min_y, p.y), std::max<double>(b.max_x, p.x),
+             std::max<double>(b.max_y, p.y)};
+        sx += p.x;
+        sy += p.y;
+    }
+    if (area2 == 0.0 || !std::isfinite(area2)) return std::nullopt;
+    const double sign = area2 > 0.0 ? 1.0 : -1.0;
+    ConvexRegion r;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 p = poly.points[i];
+        const Vec2 p2 = poly.points[(i + 1) % n];
+        // Inside when cross(e, q - p) >= 0 (for cross(e[i], e[i+1]) > 0): n = (e.y, -e.x).
+        const double ex = static_cast<double>(p2.x) - p.x;
+        const double ey = static_cast<double>(p2.y) - p.y;
+        const double nx = sign * ey;
+        const double ny = -sign * ex;
+        r.add(nx, ny, nx * p.x + ny * p.y);
+    }
+    r.bounds = b;
+    r.centre_x = sx / static_cast<double>(n);  // the vertex mean
+    r.centre_y = sy / static_cast<double>(n);
+    r.top_x = top.x;
+    r.bottom_x = bottom.x;
+    return r;
+}
+
+std::optional<DiscRegion> region_of(const Circle& c) {
+    if (!is_finite(c.center) || !std::isfinite(c.radius) || c.radius < 0.0f) return std::nullopt;
+    DiscRegion r;
+    r.cx = c.center.x;
+    r.cy = c.center.y;
+    r.r = c.radius;
+    r.bounds = {r.cx - r.r, r.cy - r.r, r.cx + r.r, r.cy + r.r};
+    r.centre_x = r.cx;
+    r.centre_y = r.cy;
+    r.top_x = r.cx;
+    r.bottom_x = r.cx;
+    return r;
+}
+
+std::optional<SegmentRegion> region_of(const Segment& s) {
+    if (!is_finite(s.a) || !is_finite(s.b)) return std::nullopt;
+    SegmentRegion r;
+    r.ax = s.a.x;
+    r.ay = s.a.y;
+    r.bx = s.b.x;
+    r.by = s.b.y;
+    r.bounds = {std::min(r.ax, r.bx), std::min(r.ay, r.by), std::max(r.ax, r.bx), std::max(r.ay, r.by)};
+    r.centre_x = 0.5 * (r.ax + r.bx);
+    r.centre_y = 0.5 * (r.ay + r.by);
+    return r;
+}
+
+// Turns a range of pixel indices computed in double into ints inside [limit_lo, limit_hi];
+// false when it misses them (NaN compares false, so it misses too).
+bool clamp_range(double f0, double f1, int limit_lo, int limit_hi, int& i0, int& i1) {
+    if (!(f0 <= f1) || f1 < limit_lo || f0 > limit_hi) return false;
+    i0 = f0 < limit_lo ? limit_lo : static_cast<int>(f0);
+    i1 = f1 > limit_hi ? limit_hi : static_cast<int>(f1);
+    return true;
+}
+
+// Columns [i0, i1] (of limit_lo..limit_hi) of the mask row whose top is `top`, placed at x,
+// that meet the region. A convex shape meets a row in one interval (one run of pixels, which
+// is why a row costs one span and a few word ANDs): the region's x-range, widened a column each
+// way for rounding, then its ends settled by the exact pixel test.
+template <class R>
+bool row_columns(const R& r, i64 x, i64 top, int limit_lo, int limit_hi, int& i0, int& i1) {
+    double lo = 0.0;
+    double hi = 0.0;
+    const double yd = static_cast<double>(top);
+    if (!r.row_range(yd, lo, hi)) return false;
+    const double xd = static_cast<double>(x);
+    if (!clamp_range(std::ceil(lo - xd - R::kFar) - 1.0, std::floor(hi - xd - R::kNear) + 1.0, limit_lo, limit_hi,
+                     i0, i1))
+        return false;
+    while (i0 <= i1 && !r.meets(xd + i0, yd)) ++i0;
+    while (i1 >= i0 && !r.meets(xd + i1, yd)) --i1;
+    return i0 <= i1;
+}
+
+// Visits the set pixels of mask m (placed at x, y) that meet region r, a word at a time:
+// visit(row, column of bit 0, word), rows top to bottom (bottom to top when `upward`), only
+// inside `window` (the mask's own pixels, inclusive); returning true stops the walk.
+template <class R, class Visit>
+bool visit_region_words(const Mask& m, i64 x, i64 y, const R& r, const PixelBox& window, bool upward, Visit&& visit) {
+    const double yd = static_cast<double>(y);
+    int j0 = 0;
+    int j1 = 0;
+    if (!clamp_range(std::ceil(r.bounds.min_y - yd - R::kFar) - 1.0, std::floor(r.bounds.max_y - yd - R::kNear) + 1.0,
+                     window.y0, window.y1, j0, j1))
+        return false;
+    for (int n = 0; n <= j1 - j0; ++n) {
+        const int j = upward ? j1 - n : j0 + n;
+        int i0 = 0;
+        int i1 = 0;
+        if (!row_columns(r, x, y + j, window.x0, window.x1, i0, i1)) continue;
+        const u64* row = m.row(j);
+        for (int k = i0 >> 6; k <= i1 >> 6; ++k) {
+            u64 w = row[k];
+            if (k == i0 >> 6) w &= ~u64{0} << (i0 & 63);
+            if (k == i1 >> 6) w &= ~u64{0} >> (63 - (i1 & 63));
+            if (w != 0 && visit(j, k * 64, w)) return true;
+        }
+    }
+    return false;
+}
+
+PixelBox whole(const Mask& m) { return {0, 0, m.width() - 1, m.height() - 1}; }
+
+template <class R>
+std::optional<Pixel> first_in(const PlacedMask& a, const std::optional<R>& r) {
+    if (!usable(a.mask) || !r) return std::nullopt;
+    std::optional<Pixel> out;
+    visit_region_words(*a.mask, a.x, a.y, *r, whole(*a.mask), false, [&](int j, int i, u64 w) {
+        out = Pixel{static_cast<int>(static_cast<i64>(a.x) + i + std::countr_zero(w)),
+                    static_cast<int>(static_cast<i64>(a.y) + j)};
+        return true;
+    });
+    return out;
+}
+
+template <class R>
+int count_in(const PlacedMask& a, const std::optional<R>& r) {
+    if (!usable(a.mask) || !r) return 0;
+    int n = 0;
+    visit_region_words(*a.mask, a.x, a.y, *r, whole(*a.mask), false, [&](int, int, u64 w) {
+        n += std::popcount(w);
+        return false;
+    });
+    return n;
+}
+
+// Mask vs a fixed region: the mask moves.
+template <class R>
+struct RegionProblem {
+    const Mask* m = nullptr;
+    i64 x = 0;
+    i64 y = 0;
+    const R* r = nullptr;
+    PixelBox box;      // set pixels, own coordinates
+    double cx = 0.0;   // centre A - centre B
+    double cy = 0.0;
+
+    double dot(i64 dx, i64 dy) const { return static_cast<double>(dx) * cx + static_cast<double>(dy) * cy; }
+
+    bool blocked(i64 dx, i64 dy, int dir, i64& jump) const {
+        jump = 1;
+        const double left = static_cast<double>(x + dx + box.x0);
+        const double right = static_cast<double>(x + dx + box.x1);
+        const double top = static_cast<double>(y + dy + box.y0);
+        const double bottom = static_cast<double>(y + dy + box.y1);
+        // The set pixels' rectangle apart from the region's bounds: free without a test.
+        if (left + R::kNear > r->bounds.max_x || right + R::kFar < r->bounds.min_x ||
+            top + R::kNear > r->bounds.max_y || bottom + R::kFar < r->bounds.min_y)
+            return false;
+        int wj = 0;
+        const bool hit = visit_region_words(*m, x + dx, y + dy, *r, box, dir < 0, [&](int j, int, u64) {
+            wj = j;
+            return true;
+        });
+        if (!hit) return false;
+        if constexpr (R::kSolid) jump = solid_jump(dx, dy, dir, wj);
+        return true;
+    }
+
+    // A pixel whose centre is inside the convex shape stays inside until it leaves the vertical
+    // chord through it: floor(room) more steps are certainly blocked (rounding of less than a
+    // pixel cannot make that too many). Any such witness will do; the row farthest back
+    // (first met walking against the motion), at the set pixel nearest the column where the
+    // chord reaches farthest, gives a long jump, so a deep mask leaves a large shape in a few tests.
+    i64 solid_jump(i64 dx, i64 dy, int dir, int j) const {
+        int i0 = 0;
+        int i1 = 0;
+        if (!row_columns(*r, x + dx, y + dy + j, box.x0, box.x1, i0, i1)) return 1;
+        const double far_x = (dir > 0 ? r->bottom_x : r->top_x) - static_cast<double>(x + dx) - 0.5;
+        const int c = static_cast<int>(std::clamp(std::round(far_x), static_cast<double>(i0), static_cast<double>(i1)));
+        const u64* row = m->row(j);
+        const std::array<int, 2> witnesses{last_set_at_or_before(row, c), first_set_at_or_after(row, m->words_per_row(), c)};
+        const double qy = static_cast<double>(y + dy + j) + 0.5;
+        i64 jump = 1;
+        for (const int i : witnesses) {
+            if (i < i0 || i > i1) continue;
+            double lo = 0.0;
+            double hi = 0.0;
+            r->column_range(static_cast<double>(x + dx + i) + 0.5, lo, hi);
+            const double room = dir > 0 ? hi - qy : qy - lo;
+            if (room >= 1.0) jump = std::max(jump, static_cast<i64>(std::floor(std::min(room, 1e12))));
+        }
+        return jump;
+    }
+};
+
+// Pushes past this length are outside the coordinate limits (|x|, |y| <= 1e5 plus a mask):
+// there the answer is the bound below (a pure-axis push clearing the shape's bounds, at most
+// two pixels long), without a search.
+constexpr double kMaxSearchedPush = 1 << 20;
+
+template <class R>
+Manifold collide_region(const PlacedMask& a, const std::optional<R>& r) {
+    if (!usable(a.mask) || !r) return {};
+    const Mask& m = *a.mask;
+    const auto stop = [](int, int, u64) { return true; };
+    if (!visit_region_words(m, a.x, a.y, *r, whole(m), false, stop)) return {};
+    const PixelBox box = set_pixel_box(m);
+    // The bound: move the set pixels' rectangle past the region's bounds along one axis (a
+    // pixel more than needed, so rounding in the bounds cannot matter).
+    const double x0 = static_cast<double>(a.x) + box.x0;
+    const double x1 = static_cast<double>(a.x) + box.x1;
+    const double y0 = static_cast<double>(a.y) + box.y0;
+    const double y1 = static_cast<double>(a.y) + box.y1;
+    const std::array<double, 4> push{
+        std::floor(r->bounds.max_x - x0 - R::kNear) + 2.0,  // right
+        std::ceil(r->bounds.min_x - x1 - R::kFar) - 2.0,   // left
+        std::floor(r->bounds.max_y - y0 - R::kNear) + 2.0,  // down
+        std::ceil(r->bounds.min_y - y1 - R::kFar) - 2.0,   // up
+    };
+    std::size_t pick = 0;
+    for (std::size_t i = 1; i < 4; ++i)
+        if (std::abs(push[i]) < std::abs(push[pick])) pick = i;
+    const double length = std::max(1.0, std::abs(push[pick]));
+    const double sign = (pick % 2 == 0) ? 1.0 : -1.0;
+    const double bx = pick < 2 ? sign * length : 0.0;
+    const double by = pick < 2 ? 0.0 : sign * length;
+    if (length > kMaxSearchedPush) return manifold_from(bx, by);
+    RegionProblem<R> p;
+    p.m = &m;
+    p.x = a.x;
+    p.y = a.y;
+    p.r = &*r;
+    p.box = box;
+    p.cx = static_cast<double>(a.x) + 0.5 * m.width() - r->centre_x;
+    p.cy = static_cast<double>(a.y) + 0.5 * m.height() - r->centre_y;
+    return search_mtd(p, AxisPush{static_cast<i64>(bx), static_cast<i64>(by)});
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// Mask vs mask (bit-packed)
+// ---------------------------------------------------------------------------------------
+
+bool overlaps(const PlacedMask& a, const PlacedMask& b) {
+    if (!usable(a.mask) || !usable(b.mask)) return false;
+    return visit_shared_words(placed(a), placed(b), false, [](i64, i64, u64) { return true; });
+}
+
+std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b) {
+    if (!usable(a.mask) || !usable(b.mask)) return std::nullopt;
+    std::optional<Pixel> out;
+    visit_shared_words(placed(a), placed(b), false, [&](i64 y, i64 x, u64 w) {
+        out = Pixel{static_cast<int>(x + std::countr_zero(w)), static_cast<int>(y)};
+        return true;
+    });
+    return out;
+}
+
+int count_overlap(const PlacedMask& a, const PlacedMask& b) {
+    if (!usable(a.mask) || !usable(b.mask)) return 0;
+    int n = 0;
+    visit_shared_words(placed(a), placed(b), false, [&](i64, i64, u64 w) {
+        n += std::popcount(w);
+        return false;
+    });
+    return n;
+}
+
+Manifold collide(const PlacedMask& a, const PlacedMask& b) {
+    if (!overlaps(a, b)) return {};
+    MaskPairProblem p;
+    p.a = placed(a);
+    p.b = placed(b);
+    p.box_a = set_pixel_box(*a.mask);
+    p.box_b = set_pixel_box(*b.mask);
+    p.cx2 = 2 * (p.a.x - p.b.x) + a.mask->width() - b.mask->width();
+    p.cy2 = 2 * (p.a.y - p.b.y) + a.mask->height() - b.mask->height();
+    // The bound: the cheapest push of A's set pixels' rectangle past B's along one axis.
+    const i64 ax0 = p.a.x + p.box_a.x0, ax1 = p.a.x + p.box_a.x1, ay0 = p.a.y + p.box_a.y0, ay1 = p.a.y + p.box_a.y1;
+    const i64 bx0 = p.b.x + p.box_b.x0, bx1 = p.b.x + p.box_b.x1, by0 = p.b.y + p.box_b.y0, by1 = p.b.y + p.box_b.y1;
+    const std::array<AxisPush, 4> pushes{AxisPush{bx1 - ax0 + 1, 0}, AxisPush{-(ax1 - bx0 + 1), 0},
+                                         AxisPush{0, by1 - ay0 + 1}, AxisPush{0, -(ay1 - by0 + 1)}};
+    AxisPush bound = pushes[0];
+    for (const AxisPush& push : pushes)
+        if (push.length() < bound.length()) bound = push;
+    return search_mtd(p, bound);
+}
+
+// ---------------------------------------------------------------------------------------
+// Mask vs the other shapes
+// ---------------------------------------------------------------------------------------
+
+bool overlaps(const PlacedMask& a, const Aabb& b) { return first_in(a, region_of(b)).has_value(); }
+std::optional<Pixel> first_overlap(const PlacedMask& a, const Aabb& b) { return first_in(a, region_of(b)); }
+int count_overlap(const PlacedMask& a, const Aabb& b) { return count_in(a, region_of(b)); }
+
+Manifold collide(const PlacedMask& a, const Aabb& b) { return collide_region(a, region_of(b)); }
+Manifold collide(const PlacedMask& a, const Obb& b) { return collide_region(a, region_of(b)); }
+Manifold collide(const PlacedMask& a, const Polygon& b) { return collide_region(a, region_of(b)); }
+Manifold collide(const PlacedMask& a, const Circle& b) { return collide_region(a, region_of(b)); }
+Manifold collide(const PlacedMask& a, const Segment& b) { return collide_region(a, region_of(b)); }
+
+int count_overlap(const PlacedMask& a, const Shape& b) {
+    return std::visit(
+        [&](const auto& s) -> int {
+            if constexpr (std::is_same_v<std::decay_t<decltype(s)>, PlacedMask>) return count_overlap(a, s);
+            else return count_in(a, region_of(s));
+        },
+        b);
+}
+
+std::optional<Pixel> first_overlap(const PlacedMask& a, const Shape& b) {
+    return std::visit(
+        [&](const auto& s) -> std::optional<Pixel> {
+            if constexpr (std::is_same_v<std::decay_t<decltype(s)>, PlacedMask>) return first_overlap(a, s);
+            else return first_in(a, region_of(s));
+        },
+        b);
+}
+
+// The nearest point of any set pixel's closed square. An empty or missing mask, or a
+// non-finite q, has no nearest point: the answer is point = q, distance = +infinity.
+// Rows are visited outward from q's row and stop once a row is farther than the best; in a
+// row only the set pixels just left and right of q's column can be nearest.
+ClosestPoint closest_point(const PlacedMask& m, Vec2 q) {
+    const ClosestPoint none{q, std::numeric_limits<float>::infinity()};
+    if (!usable(m.mask) || !is_finite(q)) return none;
+    const Mask& mask = *m.mask;
+    const double qx = q.x;
+    const double qy = q.y;
+    const double mx = m.x;
+    const double my = m.y;
+    const double w = mask.width();
+    const double h = mask.height();
+    const int start_row = static_cast<int>(std::clamp(std::floor(qy - my), 0.0, h - 1.0));
+    const int column = static_cast<int>(std::clamp(std::floor(qx - mx), 0.0, w - 1.0));
+    double best = std::numeric_limits<double>::infinity();
+    double px = qx;
+    double py = qy;
+    auto gap = [](double v, double lo) { return std::max({0.0, lo - v, v - (lo + 1.0)}); };
+    auto try_row = [&](int j) -> bool {  // false once this row and all beyond are too far
+        const double gy = gap(qy, my + j);
+        if (gy * gy >= best) return false;
+        const u64* row = mask.row(j);
+        const std::array<int, 2> candidates{last_set_at_or_before(row, column),
+                                            first_set_at_or_after(row, mask.words_per_row(), column)};
+        for (const int i : candidates) {
+            if (i < 0) continue;
+            const double gx = gap(qx, mx + i);
+            const double d2 = gx * gx + gy * gy;
+            if (d2 < best) {
+                best = d2;
+                px = std::clamp(qx, mx + i, mx + i + 1.0);
+                py = std::clamp(qy, my + j, my + j + 1.0);
+            }
+        }
+        return true;
+    };
+    for (int j = start_row; j < mask.height() && try_row(j); ++j) {
+    }
+    for (int j = start_row - 1; j >= 0 && try_row(j); --j) {
+    }
+    if (best == std::numeric_limits<double>::infinity()) return none;
+    return {Vec2{static_cast<float>(px), static_cast<float>(py)}, static_cast<float>(std::sqrt(best))};
+}
+
+// ---------------------------------------------------------------------------------------
+// reference: the lecture's brute-force loop (09-3), corrected; slow, for tests
+// ---------------------------------------------------------------------------------------
+
+namespace reference {
+
+namespace {
+
+// The slide's loop: T1 is A at (x1, y1), T2 is B at (x2, y2), deltax = x2 - x1. It has two
+// mistakes, fixed here: pixel x of A lies at world x1 + x, which is pixel x1 + x - x2 =
+// x - deltax of B (the slide writes x + deltax); and B's column and row 0 are valid, so the
+// bounds are >= 0 (the slide writes > 0). visit(world x, world y) gets every shared pixel.
+template <class Visit>
+bool lecture_loop(const Mask& t1, i64 x1, i64 y1, const Mask& t2, i64 x2, i64 y2, Visit&& visit) {
+    const i64 w1 = t1.width(), h1 = t1.height(), w2 = t2.width(), h2 = t2.height();
+    const i64 deltax = x2 - x1;
+    const i64 deltay = y2 - y1;
+    // 09-30: only A's pixels inside the intersection of the two rectangles.
+    const i64 x_begin = std::max<i64>(0, deltax), x_end = std::min(w1, deltax + w2);
+    const i64 y_begin = std::max<i64>(0, deltay), y_end = std::min(h1, deltay + h2);
+    // Rows outside, unlike the slide, so that pixels come in reading order (first_overlap).
+    for (i64 y = y_begin; y < y_end; ++y) {
+        for (i64 x = x_begin; x < x_end; ++x) {
+            if (x - deltax >= 0 && x - deltax < w2 && y - deltay >= 0 && y - deltay < h2 &&  // fixed: >= 0
+                t1.get(static_cast<int>(x), static_cast<int>(y)) &&
+                t2.get(static_cast<int>(x - deltax), static_cast<int>(y - deltay)))  // fixed: x - deltax
+                if (visit(x1 + x, y1 + y)) return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+bool overlaps(const PlacedMask& a, const PlacedMask& b) {
+    if (a.mask == nullptr || b.mask == nullptr) return false;
+    return lecture_loop(*a.mask, a.x, a.y, *b.mask, b.x, b.y, [](i64, i64) { return true; });
+}
+
+std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b) {
+    if (a.mask == nullptr || b.mask == nullptr) return std::nullopt;
+    std::optional<Pixel> out;
+    lecture_loop(*a.mask, a.x, a.y, *b.mask, b.x, b.y, [&](i64 x, i64 y) {
+        out = Pixel{static_cast<int>(x), static_cast<int>(y)};
+        return true;
+    });
+    return out;
+}
+
+int count_overlap(const PlacedMask& a, const PlacedMask& b) {
+    if (a.mask == nullptr || b.mask == nullptr) return 0;
+    int n = 0;
+    lecture_loop(*a.mask, a.x, a.y, *b.mask, b.x, b.y, [&](i64, i64) {
+        ++n;
+        return false;
+    });
+    return n;
+}
+
+Manifold collide(const PlacedMask& a, const PlacedMask& b) {
+    if (a.mask == nullptr || b.mask == nullptr) return {};
+    const Mask& ma = *a.mask;
+    const Mask& mb = *b.mask;
+    auto blocked = [&](i64 dx, i64 dy) {
+        return lecture_loop(ma, a.x + dx, a.y + dy, mb, b.x, b.y, [](i64, i64) { return true; });
+    };
+    if (!blocked(0, 0)) return {};
+    // The bound: the cheapest pure-axis push, found by stepping each way until free (after
+    // the two widths or heights the rectangles are apart, so each walk ends).
+    i64 bound = std::numeric_limits<i64>::max();
+    const std::array<std::array<i64, 2>, 4> axes{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+    for (const auto& axis : axes) {
+        for (i64 k = 1;; ++k) {
+            if (!blocked(k * axis[0], k * axis[1])) {
+                bound = std::min(bound, k);
+                break;
+            }
+        }
+    }
+    // Every translation in the bound's disc; the best by (length, larger dot with the centres'
+    // difference, smaller |dy|, smaller dx, smaller dy) is the shortest-first answer.
+    const i64 cx2 = 2 * (static_cast<i64>(a.x) - b.x) + ma.width() - mb.width();
+    const i64 cy2 = 2 * (static_cast<i64>(a.y) - b.y) + ma.height() - mb.height();
+    std::optional<std::tuple<i64, i64, i64, i64, i64>> best;
+    for (i64 dy = -bound; dy <= bound; ++dy) {
+        for (i64 dx = -bound; dx <= bound; ++dx) {
+            const i64 r2 = dx * dx + dy * dy;
+            if (r2 == 0 || r2 > bound * bound || blocked(dx, dy)) continue;
+            const std::tuple<i64, i64, i64, i64, i64> key{r2, -(dx * cx2 + dy * cy2), std::abs(dy), dx, dy};
+            if (!best || key < *best) best = key;
+        }
+    }
+    return manifold_from(std::get<3>(*best), std::get<4>(*best));
+}
+
+}  // namespace reference
+
+}  // namespace jostle

@@ -1,0 +1,250 @@
+// Circle tests (circle.cpp, slides 09-70 to 09-72 and 09-86 to 09-102): circle-circle by
+// squared distances and the lecture's MTD, polygon-circle by closest point and by SAT with the
+// vertex axis, AABB/OBB-circle by clamping, segment-circle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_shapes.h"
+
+namespace jostle {
+namespace {
+
+using test::is_hit;
+using test::is_miss;
+using test::kPi;
+using test::kSqrt2;
+
+// The lecture's MTD for circle 1 (09-72): (c1 - c2) / |c1 - c2| * (r1 + r2 - |c1 - c2|).
+Vec2 lecture_mtd(const Circle& a, const Circle& b) {
+    const Vec2 d = a.center - b.center;
+    const float len = length(d);
+    return (a.radius + b.radius - len) / len * d;
+}
+
+TEST(CircleCircle, Overlapping) {
+    // Centres 3 apart, radii 2 + 2: depth 4 - 3 = 1, normal (1,0).
+    const Circle a{{0, 0}, 2};
+    const Circle b{{3, 0}, 2};
+    const Manifold m = collide(a, b);
+    EXPECT_TRUE(is_hit(m, 1.0f, {1, 0}));
+    EXPECT_VEC_NEAR(m.mtd(), (Vec2{-1, 0}), 1e-6f);
+    EXPECT_VEC_NEAR(m.mtd(), lecture_mtd(a, b), 1e-6f);
+}
+
+TEST(CircleCircle, ThreeFourFive) {
+    // d = (3,4), |d| = 5, r1 + r2 = 7: depth 2, normal (0.6, 0.8); 09-72: (-3,-4)/5 * 2 = (-1.2,-1.6).
+    const Circle a{{1, 2}, 3};
+    const Circle b{{4, 6}, 4};
+    const Manifold m = collide(a, b);
+    EXPECT_TRUE(is_hit(m, 2.0f, {0.6f, 0.8f}));
+    EXPECT_VEC_NEAR(m.mtd(), (Vec2{-1.2f, -1.6f}), 1e-5f);
+    EXPECT_VEC_NEAR(m.mtd(), lecture_mtd(a, b), 1e-5f);
+    EXPECT_TRUE(is_hit(collide(b, a), 2.0f, {-0.6f, -0.8f}));
+}
+
+TEST(CircleCircle, TouchingExactlyIsAHitWithDepthZero) {
+    // 09-71 with squared distances: |d|^2 = 9 + 16 = 25 = (2 + 3)^2, exact in floats.
+    const Manifold m = collide(Circle{{0, 0}, 2}, Circle{{3, 4}, 3});
+    EXPECT_TRUE(m.hit);
+    EXPECT_EQ(m.depth, 0.0f);
+    EXPECT_VEC_NEAR(m.normal, (Vec2{0.6f, 0.8f}), 1e-6f);
+    const Manifold x = collide(Circle{{0, 0}, 1.5f}, Circle{{3, 0}, 1.5f});
+    EXPECT_TRUE(x.hit);
+    EXPECT_EQ(x.depth, 0.0f);
+    EXPECT_VEC_NEAR(x.normal, (Vec2{1, 0}), 1e-6f);
+}
+
+TEST(CircleCircle, ApartIsAMiss) {
+    EXPECT_TRUE(is_miss(collide(Circle{{0, 0}, 2}, Circle{{3.001f, 4}, 3})));
+    EXPECT_TRUE(is_miss(collide(Circle{{0, 0}, 1}, Circle{{10, 0}, 1})));
+}
+
+TEST(CircleCircle, CoincidentCentresUseNormalPlusX) {
+    const Manifold m = collide(Circle{{1, 1}, 1}, Circle{{1, 1}, 2});
+    EXPECT_TRUE(is_hit(m, 3.0f, {1, 0}, 0.0f));
+}
+
+TEST(CircleCircle, ZeroRadius) {
+    // A point at distance 1 from a unit circle's centre touches it.
+    const Manifold t = collide(Circle{{0, 0}, 0}, Circle{{1, 0}, 1});
+    EXPECT_TRUE(is_hit(t, 0.0f, {1, 0}, 0.0f));
+    // A point 0.5 inside: depth 0.5.
+    EXPECT_TRUE(is_hit(collide(Circle{{0.5f, 0}, 0}, Circle{{1, 0}, 1}), 0.5f, {1, 0}));
+    EXPECT_TRUE(is_miss(collide(Circle{{-0.5f, 0}, 0}, Circle{{1, 0}, 1})));
+    // Two equal points: touching, coincident-centre normal.
+    EXPECT_TRUE(is_hit(collide(Circle{{2, 3}, 0}, Circle{{2, 3}, 0}), 0.0f, {1, 0}, 0.0f));
+    EXPECT_TRUE(is_miss(collide(Circle{{2, 3}, 0}, Circle{{2, 4}, 0})));
+}
+
+// Polygon-circle: the closest-point method (09-90) and SAT with the vertex axis (09-96) must
+// both give the expected manifold.
+void expect_polygon_circle(const Polygon& p, const Circle& c, float depth, Vec2 normal, float tol = 1e-5f) {
+    EXPECT_TRUE(is_hit(collide(p, c), depth, normal, tol)) << "collide";
+    EXPECT_TRUE(is_hit(collide_sat(p, c), depth, normal, tol)) << "collide_sat";
+}
+
+TEST(PolygonCircle, CentreOutsideNearAnEdge) {
+    // Square [0,4]^2, circle (5,2) r 2: closest point (4,2), distance 1, depth 1, normal (1,0).
+    // The slide's MTD for the polygon: direction p - c = (-1,0), length r - |p - c| = 1.
+    const Polygon sq = test::box_polygon(0, 0, 4, 4);
+    expect_polygon_circle(sq, Circle{{5, 2}, 2}, 1.0f, {1, 0});
+    EXPECT_VEC_NEAR(collide(sq, Circle{{5, 2}, 2}).mtd(), (Vec2{-1, 0}), 1e-6f);
+    // Above the top edge: circle (1,-1) r 1.5: depth 0.5, normal (0,-1).
+    expect_polygon_circle(sq, Circle{{1, -1}, 1.5f}, 0.5f, {0, -1});
+}
+
+TEST(PolygonCircle, CentreOutsideNearAVertex) {
+    // Circle (5,5) r 2: closest point (4,4), distance sqrt2, depth 2 - sqrt2 = 0.5858, normal
+    // (1,1)/sqrt2. SAT: the vertex axis gives 8/sqrt2 - (10/sqrt2 - 2) = 2 - sqrt2 < 1 (edges).
+    expect_polygon_circle(test::box_polygon(0, 0, 4, 4), Circle{{5, 5}, 2}, 2.0f - kSqrt2,
+                          {1.0f / kSqrt2, 1.0f / kSqrt2});
+}
+
+TEST(PolygonCircle, OnlyTheVertexAxisSeparates) {
+    // Circle (5.5,5.5) r 2: distance to (4,4) is 1.5 sqrt2 = 2.12 > 2, a miss; yet on x and y
+    // the circle spans [3.5,7.5], overlapping [0,4]: the edge normals alone would report a hit.
+    const Polygon sq = test::box_polygon(0, 0, 4, 4);
+    EXPECT_TRUE(is_miss(collide(sq, Circle{{5.5f, 5.5f}, 2})));
+    EXPECT_TRUE(is_miss(collide_sat(sq, Circle{{5.5f, 5.5f}, 2})));
+}
+
+TEST(PolygonCircle, CentreOnTheBoundary) {
+    // Centre (4,2) on the right edge, r 1: pushed out through that edge, depth r = 1.
+    expect_polygon_circle(test::box_polygon(0, 0, 4, 4), Circle{{4, 2}, 1}, 1.0f, {1, 0});
+}
+
+TEST(PolygonCircle, CentreInside) {
+    // Centre (3,2), r 0.5: nearest edge x = 4 at distance 1; depth 1 + 0.5 = 1.5, normal (1,0).
+    // After the polygon moves by mtd (-1.5,0) its right edge is at 2.5 = 3 - 0.5: touching.
+    const Polygon sq = test::box_polygon(0, 0, 4, 4);
+    expect_polygon_circle(sq, Circle{{3, 2}, 0.5f}, 1.5f, {1, 0});
+    // Centre (2,0.5), r 1: nearest edge y = 0 at 0.5; depth 1.5, normal (0,-1).
+    expect_polygon_circle(sq, Circle{{2, 0.5f}, 1}, 1.5f, {0, -1});
+}
+
+TEST(PolygonCircle, TouchingAndMiss) {
+    const Polygon sq = test::box_polygon(0, 0, 4, 4);
+    // Circle (6,2) r 2 touches the right edge at (4,2).
+    expect_polygon_circle(sq, Circle{{6, 2}, 2}, 0.0f, {1, 0}, 0.0f);
+    EXPECT_TRUE(is_miss(collide(sq, Circle{{6.01f, 2}, 2})));
+    EXPECT_TRUE(is_miss(collide_sat(sq, Circle{{6.01f, 2}, 2})));
+}
+
+TEST(PolygonCircle, SlantedEdge) {
+    // Triangle (0,0),(4,0),(0,4); circle (3,3): distance to x + y = 4 is (6-4)/sqrt2 = sqrt2.
+    const Polygon tri = test::polygon_or_die({{0, 0}, {4, 0}, {0, 4}});
+    EXPECT_TRUE(is_miss(collide(tri, Circle{{3, 3}, 1})));
+    EXPECT_TRUE(is_miss(collide_sat(tri, Circle{{3, 3}, 1})));
+    // r 2: depth 2 - sqrt2, normal (1,1)/sqrt2 (closest point (2,2) inside the edge).
+    expect_polygon_circle(tri, Circle{{3, 3}, 2}, 2.0f - kSqrt2, {1.0f / kSqrt2, 1.0f / kSqrt2});
+}
+
+TEST(PolygonCircle, ZeroRadius) {
+    // A point at (1,2) in [0,4]^2: nearest edge x = 0 at 1: depth 1; the polygon moves right,
+    // so the normal (polygon toward point) is (-1,0).
+    expect_polygon_circle(test::box_polygon(0, 0, 4, 4), Circle{{1, 2}, 0}, 1.0f, {-1, 0});
+    EXPECT_TRUE(is_miss(collide(test::box_polygon(0, 0, 4, 4), Circle{{5, 2}, 0})));
+    EXPECT_TRUE(is_miss(collide_sat(test::box_polygon(0, 0, 4, 4), Circle{{5, 2}, 0})));
+}
+
+TEST(AabbCircle, ClampOutside) {
+    // Box [0,4]x[0,2], circle (6,1) r 3: clamp -> (4,1), distance 2, depth 1, normal (1,0).
+    const Aabb box{{0, 0}, {4, 2}};
+    EXPECT_TRUE(is_hit(collide(box, Circle{{6, 1}, 3}), 1.0f, {1, 0}));
+    // Circle (7,6) r 6: clamp -> (4,2), d = (3,4), distance 5, depth 1, normal (0.6,0.8).
+    EXPECT_TRUE(is_hit(collide(box, Circle{{7, 6}, 6}), 1.0f, {0.6f, 0.8f}));
+}
+
+TEST(AabbCircle, TouchingACorner) {
+    // Circle (7,6) r 5: |(3,4)|^2 = 25 = r^2, exactly touching the corner (4,2).
+    const Manifold m = collide(Aabb{{0, 0}, {4, 2}}, Circle{{7, 6}, 5});
+    EXPECT_TRUE(is_hit(m, 0.0f, {0.6f, 0.8f}, 1e-6f));
+    EXPECT_EQ(m.depth, 0.0f);
+    EXPECT_TRUE(is_miss(collide(Aabb{{0, 0}, {4, 2}}, Circle{{7.01f, 6}, 5})));
+}
+
+TEST(AabbCircle, CentreInsidePushedThroughTheNearestFace) {
+    // Centre (3,0.5) in [0,4]x[0,2]: faces at 3 (left), 1 (right), 0.5 (top), 1.5 (bottom);
+    // the top face y = 0 is nearest: depth 0.5 + 1 = 1.5, the box moves down, normal (0,-1).
+    const Manifold m = collide(Aabb{{0, 0}, {4, 2}}, Circle{{3, 0.5f}, 1});
+    EXPECT_TRUE(is_hit(m, 1.5f, {0, -1}));
+    EXPECT_VEC_NEAR(m.mtd(), (Vec2{0, 1.5f}), 1e-6f);
+    // Centre (3.8,1) r 0: nearest face x = 4 at 0.2.
+    EXPECT_TRUE(is_hit(collide(Aabb{{0, 0}, {4, 2}}, Circle{{3.8f, 1}, 0}), 0.2f, {1, 0}, 1e-5f));
+    // Centre exactly in the middle of a square: a tie, depth 2 + r along some axis.
+    const Manifold tie = collide(Aabb{{0, 0}, {4, 4}}, Circle{{2, 2}, 1});
+    EXPECT_TRUE(tie.hit);
+    EXPECT_FLOAT_EQ(tie.depth, 3.0f);
+    EXPECT_TRUE(test::is_unit(tie.normal));
+    EXPECT_TRUE(tie.normal.x == 0.0f || tie.normal.y == 0.0f);
+}
+
+TEST(AabbCircle, PointOnTheBoundary) {
+    // A zero-radius circle on the right face: touching, pushed through x = 4 (distance 0).
+    EXPECT_TRUE(is_hit(collide(Aabb{{0, 0}, {4, 2}}, Circle{{4, 1}, 0}), 0.0f, {1, 0}, 0.0f));
+}
+
+TEST(ObbCircle, DiamondVertexAndFace) {
+    // Half (1,1) at 45 deg: vertices (+-sqrt2, 0), (0, +-sqrt2).
+    const Obb diamond{{0, 0}, {1, 1}, kPi / 4};
+    // Circle (3,0) r 2: closest point the vertex (sqrt2,0), distance 3 - sqrt2: depth sqrt2 - 1.
+    EXPECT_TRUE(is_hit(collide(diamond, Circle{{3, 0}, 2}), kSqrt2 - 1.0f, {1, 0}, 1e-5f));
+    // Circle (2,2) r 2: the face with normal (1,1)/sqrt2 is 1 from the centre, the circle's
+    // centre 2 sqrt2: depth 2 - (2 sqrt2 - 1) = 3 - 2 sqrt2 = 0.17157.
+    EXPECT_TRUE(is_hit(collide(diamond, Circle{{2, 2}, 2}), 3.0f - 2.0f * kSqrt2, {1.0f / kSqrt2, 1.0f / kSqrt2}, 1e-5f));
+    EXPECT_TRUE(is_miss(collide(diamond, Circle{{2, 2}, 1.5f})));
+}
+
+TEST(ObbCircle, QuarterTurnBox) {
+    // Half (2,1) turned 90 deg at the origin covers x in [-1,1], y in [-2,2].
+    const Obb box{{0, 0}, {2, 1}, kPi / 2};
+    EXPECT_TRUE(is_hit(collide(box, Circle{{3, 0}, 2.5f}), 0.5f, {1, 0}, 1e-5f));
+    // Inside at (0,1.5) r 0.25: nearest face y = 2 at 0.5: depth 0.75, normal (0,1).
+    EXPECT_TRUE(is_hit(collide(box, Circle{{0, 1.5f}, 0.25f}), 0.75f, {0, 1}, 1e-5f));
+    EXPECT_TRUE(is_miss(collide(box, Circle{{0, 3.1f}, 1})));
+}
+
+TEST(SegmentCircle, ClosestPointInTheMiddle) {
+    // Segment (0,0)-(10,0), circle (4,1) r 2: p = (4,0), |p - c| = 1, depth 1. Normal segment ->
+    // circle (0,1). 09-88: the segment's MTD is along p - c = (0,-1), length r - 1 = 1.
+    const Manifold m = collide(Segment{{0, 0}, {10, 0}}, Circle{{4, 1}, 2});
+    EXPECT_TRUE(is_hit(m, 1.0f, {0, 1}));
+    EXPECT_VEC_NEAR(m.mtd(), (Vec2{0, -1}), 1e-6f);
+}
+
+TEST(SegmentCircle, BeyondTheEndpoint) {
+    // Circle (11,1) r 2: p = (10,0), |p - c| = sqrt2: depth 2 - sqrt2, normal (1,1)/sqrt2.
+    EXPECT_TRUE(is_hit(collide(Segment{{0, 0}, {10, 0}}, Circle{{11, 1}, 2}), 2.0f - kSqrt2,
+                       {1.0f / kSqrt2, 1.0f / kSqrt2}));
+    EXPECT_TRUE(is_miss(collide(Segment{{0, 0}, {10, 0}}, Circle{{11.5f, 1.5f}, 2})));
+}
+
+TEST(SegmentCircle, TouchingAndMiss) {
+    EXPECT_TRUE(is_hit(collide(Segment{{0, 0}, {10, 0}}, Circle{{4, 2}, 2}), 0.0f, {0, 1}, 0.0f));
+    EXPECT_TRUE(is_miss(collide(Segment{{0, 0}, {10, 0}}, Circle{{4, 2.01f}, 2})));
+}
+
+TEST(SegmentCircle, CentreOnTheSegment) {
+    // p = c: the push is sideways, r = 1 (along the segment it would be 5 or 7).
+    const Manifold m = collide(Segment{{0, 0}, {10, 0}}, Circle{{4, 0}, 1});
+    EXPECT_TRUE(m.hit);
+    EXPECT_FLOAT_EQ(m.depth, 1.0f);
+    EXPECT_NEAR(std::fabs(m.normal.y), 1.0f, 1e-6f);
+    EXPECT_EQ(m.normal.x, 0.0f);
+}
+
+TEST(SegmentCircle, ZeroLengthSegmentAndZeroRadius) {
+    // A point segment at (1,1), circle (4,5): distance 5.
+    EXPECT_TRUE(is_hit(collide(Segment{{1, 1}, {1, 1}}, Circle{{4, 5}, 5}), 0.0f, {0.6f, 0.8f}, 1e-6f));
+    EXPECT_TRUE(is_hit(collide(Segment{{1, 1}, {1, 1}}, Circle{{4, 5}, 6}), 1.0f, {0.6f, 0.8f}));
+    EXPECT_TRUE(is_miss(collide(Segment{{1, 1}, {1, 1}}, Circle{{4, 5}, 4.9f})));
+    // A zero-radius circle on the segment touches it.
+    const Manifold p = collide(Segment{{0, 0}, {10, 0}}, Circle{{3, 0}, 0});
+    EXPECT_TRUE(p.hit);
+    EXPECT_EQ(p.depth, 0.0f);
+    EXPECT_TRUE(test::is_unit(p.normal));
+}
+
+}  // namespace
+}  // namespace jostle

@@ -1,0 +1,277 @@
+// Lines and closest points (lines.cpp, slides 09-73 to 09-102): the A x + B y = C form, line
+// and segment intersection, closest points on a line, segment, circle, in a box and polygon.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_shapes.h"
+
+namespace jostle {
+namespace {
+
+using test::kPi;
+using test::kSqrt2;
+
+TEST(LineThrough, Coefficients) {
+    // (1,2),(4,6): A = 6 - 2 = 4, B = 1 - 4 = -3, C = 4*1 + (-3)*2 = -2.
+    const Line l = line_through({1, 2}, {4, 6});
+    EXPECT_EQ(l.a, 4.0f);
+    EXPECT_EQ(l.b, -3.0f);
+    EXPECT_EQ(l.c, -2.0f);
+    // Both points satisfy it: 4*4 - 3*6 = -2.
+    EXPECT_EQ(l.a * 4.0f + l.b * 6.0f, l.c);
+}
+
+TEST(LineIntersect, CrossingPointBySlideFormulas) {
+    // l1 through (0,0),(4,4): A1 = 4, B1 = -4, C1 = 0. l2 through (0,4),(4,0): A2 = -4, B2 = -4,
+    // C2 = -16. det = A2 B1 - B2 A1 = 16 + 16 = 32; x = (C2 B1 - B2 C1)/det = 64/32 = 2;
+    // y = (C1 A2 - A1 C2)/det = 64/32 = 2.
+    const LineIntersection r = intersect(line_through({0, 0}, {4, 4}), line_through({0, 4}, {4, 0}));
+    EXPECT_EQ(r.kind, LineRelation::point);
+    EXPECT_EQ(r.point, (Vec2{2, 2}));
+}
+
+TEST(LineIntersect, NonSymmetricCase) {
+    // l1: y = 1 through (0,1),(5,1): A1 = 0, B1 = -5, C1 = -5. l2 through (2,0),(4,4): A2 = 4,
+    // B2 = -2, C2 = 8. det = 4*(-5) - (-2)*0 = -20; x = (8*(-5) - (-2)(-5))/-20 = -50/-20 = 2.5;
+    // y = ((-5)*4 - 0*8)/-20 = 1. Check: on l2, y = 2(x - 2) = 1 at x = 2.5.
+    const LineIntersection r = intersect(line_through({0, 1}, {5, 1}), line_through({2, 0}, {4, 4}));
+    EXPECT_EQ(r.kind, LineRelation::point);
+    EXPECT_VEC_NEAR(r.point, (Vec2{2.5f, 1}), 1e-6f);
+}
+
+TEST(LineIntersect, ParallelAndCoincident) {
+    // Through (0,0),(1,1): (1,-1,0); through (0,1),(1,2): (1,-1,-1). det = 1*(-1) - (-1)*1 = 0.
+    const LineIntersection p = intersect(line_through({0, 0}, {1, 1}), line_through({0, 1}, {1, 2}));
+    EXPECT_EQ(p.kind, LineRelation::parallel);
+    EXPECT_EQ(p.point, (Vec2{0, 0}));
+    // Through (2,2),(5,5): (3,-3,0), the same line scaled: coincident.
+    const LineIntersection c = intersect(line_through({0, 0}, {1, 1}), line_through({2, 2}, {5, 5}));
+    EXPECT_EQ(c.kind, LineRelation::coincident);
+    EXPECT_EQ(c.point, (Vec2{0, 0}));
+    // Opposite direction, same line: (5,5)->(2,2) gives (-3,3,0).
+    EXPECT_EQ(intersect(line_through({0, 0}, {1, 1}), line_through({5, 5}, {2, 2})).kind, LineRelation::coincident);
+    // Vertical lines x = 1 and x = 3.
+    EXPECT_EQ(intersect(line_through({1, 0}, {1, 5}), line_through({3, 0}, {3, 5})).kind, LineRelation::parallel);
+    EXPECT_EQ(intersect(line_through({1, 0}, {1, 5}), line_through({1, 7}, {1, -2})).kind, LineRelation::coincident);
+}
+
+TEST(LineIntersect, DegenerateLineIsParallelToEverything) {
+    const Line deg = line_through({3, 3}, {3, 3});
+    EXPECT_EQ(intersect(deg, line_through({0, 0}, {4, 4})).kind, LineRelation::parallel);
+    EXPECT_EQ(intersect(line_through({0, 0}, {4, 4}), deg).kind, LineRelation::parallel);
+    EXPECT_EQ(intersect(deg, deg).kind, LineRelation::parallel);
+    EXPECT_EQ(intersect(deg, deg).point, (Vec2{0, 0}));
+}
+
+TEST(SegmentIntersect, Crossing) {
+    const SegmentIntersection r = intersect(Segment{{0, 0}, {4, 4}}, Segment{{0, 4}, {4, 0}});
+    EXPECT_TRUE(r.hit);
+    EXPECT_EQ(r.point, (Vec2{2, 2}));
+    // Lines cross at (2,2) but the second segment stops at (1,3): the range check fails.
+    EXPECT_FALSE(intersect(Segment{{0, 0}, {4, 4}}, Segment{{0, 4}, {1, 3}}).hit);
+    // Crossing beyond the first segment's end.
+    EXPECT_FALSE(intersect(Segment{{0, 0}, {1, 1}}, Segment{{0, 4}, {4, 0}}).hit);
+}
+
+TEST(SegmentIntersect, EndpointsTouching) {
+    // (0,0)-(2,2) and (2,2)-(4,0): det = 8, x = 16/8 = 2, y = 16/8 = 2: closed ranges accept it.
+    const SegmentIntersection r = intersect(Segment{{0, 0}, {2, 2}}, Segment{{2, 2}, {4, 0}});
+    EXPECT_TRUE(r.hit);
+    EXPECT_EQ(r.point, (Vec2{2, 2}));
+}
+
+TEST(SegmentIntersect, TJunction) {
+    const SegmentIntersection r = intersect(Segment{{0, 0}, {4, 0}}, Segment{{2, 0}, {2, 3}});
+    EXPECT_TRUE(r.hit);
+    EXPECT_EQ(r.point, (Vec2{2, 0}));
+    const SegmentIntersection s = intersect(Segment{{2, 3}, {2, 0}}, Segment{{0, 0}, {4, 0}});
+    EXPECT_TRUE(s.hit);
+    EXPECT_EQ(s.point, (Vec2{2, 0}));
+    EXPECT_FALSE(intersect(Segment{{0, 0}, {4, 0}}, Segment{{2, 0.001f}, {2, 3}}).hit);
+}
+
+TEST(SegmentIntersect, AxisAlignedRangeCheck) {
+    // A horizontal and a vertical segment: the slide's range check on a zero-width x range.
+    const SegmentIntersection r = intersect(Segment{{0, 1}, {4, 1}}, Segment{{3, -2}, {3, 5}});
+    EXPECT_TRUE(r.hit);
+    EXPECT_EQ(r.point, (Vec2{3, 1}));
+    EXPECT_FALSE(intersect(Segment{{0, 1}, {4, 1}}, Segment{{5, -2}, {5, 5}}).hit);
+}
+
+TEST(SegmentIntersect, CollinearOverlapping) {
+    // [0,3] and [2,5] on y = 0 share [2,3]; the shared point nearest s1.a = (0,0) is (2,0).
+    const SegmentIntersection r = intersect(Segment{{0, 0}, {3, 0}}, Segment{{2, 0}, {5, 0}});
+    EXPECT_TRUE(r.hit);
+    EXPECT_EQ(r.point, (Vec2{2, 0}));
+    // s1 reversed: s1.a = (3,0) is itself shared.
+    const SegmentIntersection b = intersect(Segment{{3, 0}, {0, 0}}, Segment{{2, 0}, {5, 0}});
+    EXPECT_TRUE(b.hit);
+    EXPECT_EQ(b.point, (Vec2{3, 0}));
+    // s2 inside s1 on a diagonal: (0,0)-(6,6) and (4,4)-(2,2): nearest to s1.a is (2,2).
+    const SegmentIntersection d = intersect(Segment{{0, 0}, {6, 6}}, Segment{{4, 4}, {2, 2}});
+    EXPECT_TRUE(d.hit);
+    EXPECT_VEC_NEAR(d.point, (Vec2{2, 2}), 1e-6f);
+    // Collinear, touching end to end.
+    const SegmentIntersection t = intersect(Segment{{0, 0}, {2, 0}}, Segment{{2, 0}, {3, 0}});
+    EXPECT_TRUE(t.hit);
+    EXPECT_EQ(t.point, (Vec2{2, 0}));
+    // Vertical collinear.
+    const SegmentIntersection v = intersect(Segment{{1, 5}, {1, 0}}, Segment{{1, 2}, {1, 8}});
+    EXPECT_TRUE(v.hit);
+    EXPECT_EQ(v.point, (Vec2{1, 5}));
+}
+
+TEST(SegmentIntersect, CollinearDisjointAndParallelDisjoint) {
+    EXPECT_FALSE(intersect(Segment{{0, 0}, {2, 0}}, Segment{{3, 0}, {5, 0}}).hit);
+    EXPECT_FALSE(intersect(Segment{{0, 0}, {2, 2}}, Segment{{3, 3}, {5, 5}}).hit);
+    EXPECT_FALSE(intersect(Segment{{0, 0}, {2, 0}}, Segment{{0, 1}, {2, 1}}).hit);
+    EXPECT_FALSE(intersect(Segment{{0, 0}, {2, 2}}, Segment{{1, 0}, {3, 2}}).hit);
+    EXPECT_EQ(intersect(Segment{{0, 0}, {2, 0}}, Segment{{0, 1}, {2, 1}}).point, (Vec2{0, 0}));
+}
+
+TEST(SegmentIntersect, ZeroLengthSegments) {
+    // A point segment lying on the other segment shares that point.
+    const SegmentIntersection r = intersect(Segment{{2, 0}, {2, 0}}, Segment{{0, 0}, {4, 0}});
+    EXPECT_TRUE(r.hit);
+    EXPECT_EQ(r.point, (Vec2{2, 0}));
+    EXPECT_TRUE(intersect(Segment{{0, 0}, {4, 0}}, Segment{{2, 0}, {2, 0}}).hit);
+    EXPECT_FALSE(intersect(Segment{{2, 1}, {2, 1}}, Segment{{0, 0}, {4, 0}}).hit);
+    EXPECT_FALSE(intersect(Segment{{5, 0}, {5, 0}}, Segment{{0, 0}, {4, 0}}).hit);
+    EXPECT_TRUE(intersect(Segment{{1, 1}, {1, 1}}, Segment{{1, 1}, {1, 1}}).hit);
+    EXPECT_FALSE(intersect(Segment{{1, 1}, {1, 1}}, Segment{{1, 2}, {1, 2}}).hit);
+}
+
+TEST(ClosestPointLine, FootOfThePerpendicular) {
+    // 09-83. Line y = 0 through (0,0),(4,0); p = (2,3) -> (2,0). Beyond the points too: (9,-2) -> (9,0).
+    const Line x_axis = line_through({0, 0}, {4, 0});
+    EXPECT_VEC_NEAR(closest_point(x_axis, {2, 3}), (Vec2{2, 0}), 1e-6f);
+    EXPECT_VEC_NEAR(closest_point(x_axis, {9, -2}), (Vec2{9, 0}), 1e-6f);
+    // Line y = x; p = (0,2): foot (1,1).
+    EXPECT_VEC_NEAR(closest_point(line_through({0, 0}, {2, 2}), {0, 2}), (Vec2{1, 1}), 1e-6f);
+    // Line x + y = 4; p = (0,0): foot (2,2).
+    EXPECT_VEC_NEAR(closest_point(line_through({0, 4}, {4, 0}), {0, 0}), (Vec2{2, 2}), 1e-6f);
+    // A point on the line is its own foot.
+    EXPECT_VEC_NEAR(closest_point(line_through({0, 4}, {4, 0}), {1, 3}), (Vec2{1, 3}), 1e-6f);
+}
+
+TEST(ClosestPointSegment, InsideAndBeyondTheEnds) {
+    // 09-85: (0,0)-(4,0).
+    const Segment s{{0, 0}, {4, 0}};
+    EXPECT_VEC_NEAR(closest_point(s, {1, 5}), (Vec2{1, 0}), 1e-6f);
+    EXPECT_VEC_NEAR(closest_point(s, {6, 3}), (Vec2{4, 0}), 1e-6f);
+    EXPECT_VEC_NEAR(closest_point(s, {-2, -1}), (Vec2{0, 0}), 1e-6f);
+    // Diagonal (0,0)-(2,2): (0,2) -> (1,1); (5,3) -> foot at (4,4) is beyond -> (2,2).
+    EXPECT_VEC_NEAR(closest_point(Segment{{0, 0}, {2, 2}}, {0, 2}), (Vec2{1, 1}), 1e-6f);
+    EXPECT_VEC_NEAR(closest_point(Segment{{0, 0}, {2, 2}}, {5, 3}), (Vec2{2, 2}), 1e-6f);
+    // Zero length: the point itself.
+    EXPECT_EQ(closest_point(Segment{{3, 3}, {3, 3}}, {7, -1}), (Vec2{3, 3}));
+}
+
+TEST(ClosestPointOnCircle, SlideFormula) {
+    // 09-98: d = c - q, p = q + (|d| - r)/|d| d. c = (0,0), r = 5, q = (6,8): d = (-6,-8),
+    // |d| = 10, p = (6,8) + 0.5 (-6,-8) = (3,4).
+    EXPECT_VEC_NEAR(closest_point_on(Circle{{0, 0}, 5}, {6, 8}), (Vec2{3, 4}), 1e-5f);
+    // q inside at (1,0): d = (-1,0), |d| = 1, p = (1,0) + (-4)(-1,0) = (5,0).
+    EXPECT_VEC_NEAR(closest_point_on(Circle{{0, 0}, 5}, {1, 0}), (Vec2{5, 0}), 1e-5f);
+    // Off-origin: c = (10,10), r = 1, q = (10,13) -> (10,11).
+    EXPECT_VEC_NEAR(closest_point_on(Circle{{10, 10}, 1}, {10, 13}), (Vec2{10, 11}), 1e-5f);
+    // q at the centre: any point of the circle, but a finite one on it.
+    const Vec2 p = closest_point_on(Circle{{2, 3}, 4}, {2, 3});
+    EXPECT_TRUE(is_finite(p));
+    EXPECT_NEAR(length(p - Vec2{2, 3}), 4.0f, 1e-5f);
+}
+
+TEST(ClosestPointCircle, InTheClosedDisc) {
+    const ClosestPoint out = closest_point(Circle{{0, 0}, 5}, {6, 8});
+    EXPECT_VEC_NEAR(out.point, (Vec2{3, 4}), 1e-5f);
+    EXPECT_NEAR(out.distance, 5.0f, 1e-5f);
+    const ClosestPoint in = closest_point(Circle{{0, 0}, 5}, {1, 2});
+    EXPECT_EQ(in.point, (Vec2{1, 2}));
+    EXPECT_EQ(in.distance, 0.0f);
+    const ClosestPoint on = closest_point(Circle{{0, 0}, 5}, {3, 4});
+    EXPECT_VEC_NEAR(on.point, (Vec2{3, 4}), 1e-6f);
+    EXPECT_NEAR(on.distance, 0.0f, 1e-6f);
+}
+
+TEST(ClosestPointAabb, PushIn) {
+    // 09-102 on [0,4]x[0,2].
+    const Aabb box{{0, 0}, {4, 2}};
+    const ClosestPoint a = closest_point(box, {6, -1});  // both axes clamped: (4,0), |(2,-1)| = sqrt5
+    EXPECT_EQ(a.point, (Vec2{4, 0}));
+    EXPECT_NEAR(a.distance, std::sqrt(5.0f), 1e-6f);
+    const ClosestPoint b = closest_point(box, {-1, 1});  // x clamped: (0,1), distance 1
+    EXPECT_EQ(b.point, (Vec2{0, 1}));
+    EXPECT_FLOAT_EQ(b.distance, 1.0f);
+    const ClosestPoint c = closest_point(box, {2, 1});  // inside: itself
+    EXPECT_EQ(c.point, (Vec2{2, 1}));
+    EXPECT_EQ(c.distance, 0.0f);
+    const ClosestPoint d = closest_point(box, {3, 5});  // y clamped: (3,2), distance 3
+    EXPECT_EQ(d.point, (Vec2{3, 2}));
+    EXPECT_FLOAT_EQ(d.distance, 3.0f);
+}
+
+TEST(ClosestPointObb, InTheBoxFrame) {
+    // Diamond (half 1 at 45 deg): q = (3,0) -> vertex (sqrt2,0), distance 3 - sqrt2.
+    const Obb diamond{{0, 0}, {1, 1}, kPi / 4};
+    const ClosestPoint v = closest_point(diamond, {3, 0});
+    EXPECT_VEC_NEAR(v.point, (Vec2{kSqrt2, 0}), 1e-5f);
+    EXPECT_NEAR(v.distance, 3.0f - kSqrt2, 1e-5f);
+    // q = (2,2) -> foot on the face, (1/sqrt2, 1/sqrt2), distance 2 sqrt2 - 1.
+    const ClosestPoint f = closest_point(diamond, {2, 2});
+    EXPECT_VEC_NEAR(f.point, (Vec2{1 / kSqrt2, 1 / kSqrt2}), 1e-5f);
+    EXPECT_NEAR(f.distance, 2 * kSqrt2 - 1, 1e-5f);
+    const ClosestPoint in = closest_point(diamond, {0.2f, 0.3f});
+    EXPECT_VEC_NEAR(in.point, (Vec2{0.2f, 0.3f}), 1e-6f);
+    EXPECT_NEAR(in.distance, 0.0f, 1e-6f);
+}
+
+TEST(ClosestPointPolygon, OutsideInsideAndBoundary) {
+    // Triangle (0,0),(4,0),(0,4).
+    const Polygon tri = test::polygon_or_die({{0, 0}, {4, 0}, {0, 4}});
+    const ClosestPoint h = closest_point(tri, {3, 3});  // foot on x + y = 4: (2,2), distance sqrt2
+    EXPECT_VEC_NEAR(h.point, (Vec2{2, 2}), 1e-5f);
+    EXPECT_NEAR(h.distance, kSqrt2, 1e-5f);
+    const ClosestPoint v = closest_point(tri, {6, -1});  // vertex region of (4,0): distance sqrt5
+    EXPECT_VEC_NEAR(v.point, (Vec2{4, 0}), 1e-5f);
+    EXPECT_NEAR(v.distance, std::sqrt(5.0f), 1e-5f);
+    const ClosestPoint e = closest_point(tri, {2, -3});  // foot on y = 0: (2,0), distance 3
+    EXPECT_VEC_NEAR(e.point, (Vec2{2, 0}), 1e-6f);
+    EXPECT_NEAR(e.distance, 3.0f, 1e-6f);
+    const ClosestPoint in = closest_point(tri, {1, 1});  // inside: itself
+    EXPECT_EQ(in.point, (Vec2{1, 1}));
+    EXPECT_EQ(in.distance, 0.0f);
+}
+
+TEST(ClosestPointOnBoundary, InsidePointGoesToTheNearestEdge) {
+    // Square [0,4]^2, q = (3,2): nearest edge x = 4, point (4,2).
+    const Polygon sq = test::box_polygon(0, 0, 4, 4);
+    int edge = -1;
+    const Vec2 p = closest_point_on_boundary(sq, {3, 2}, &edge);
+    EXPECT_VEC_NEAR(p, (Vec2{4, 2}), 1e-6f);
+    ASSERT_GE(edge, 0);
+    ASSERT_LT(edge, sq.count);
+    EXPECT_VEC_NEAR(sq.normals[static_cast<std::size_t>(edge)], (Vec2{1, 0}), 1e-6f);
+    // Outside near the top: q = (1,-2) -> (1,0) on the edge with normal (0,-1).
+    const Vec2 t = closest_point_on_boundary(sq, {1, -2}, &edge);
+    EXPECT_VEC_NEAR(t, (Vec2{1, 0}), 1e-6f);
+    EXPECT_VEC_NEAR(sq.normals[static_cast<std::size_t>(edge)], (Vec2{0, -1}), 1e-6f);
+    // Without the edge out-parameter.
+    EXPECT_VEC_NEAR(closest_point_on_boundary(sq, {2, 0.5f}), (Vec2{2, 0}), 1e-6f);
+}
+
+TEST(ClosestPointShape, DispatchesToTheShape) {
+    EXPECT_EQ(closest_point(Shape{Aabb{{0, 0}, {4, 2}}}, {6, -1}).point, (Vec2{4, 0}));
+    EXPECT_VEC_NEAR(closest_point(Shape{Circle{{0, 0}, 5}}, {6, 8}).point, (Vec2{3, 4}), 1e-5f);
+    const ClosestPoint s = closest_point(Shape{Segment{{0, 0}, {4, 0}}}, {6, 3});
+    EXPECT_VEC_NEAR(s.point, (Vec2{4, 0}), 1e-6f);
+    EXPECT_NEAR(s.distance, std::sqrt(13.0f), 1e-5f);
+    const ClosestPoint p = closest_point(Shape{test::box_polygon(0, 0, 4, 4)}, {5, 5});
+    EXPECT_VEC_NEAR(p.point, (Vec2{4, 4}), 1e-6f);
+    EXPECT_NEAR(p.distance, kSqrt2, 1e-6f);
+    const ClosestPoint o = closest_point(Shape{Obb{{0, 0}, {1, 1}, kPi / 4}}, {3, 0});
+    EXPECT_NEAR(o.distance, 3.0f - kSqrt2, 1e-5f);
+}
+
+}  // namespace
+}  // namespace jostle

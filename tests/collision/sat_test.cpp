@@ -1,0 +1,251 @@
+// Separating axis tests (sat.cpp, slides 09-35 to 09-69): OBB-OBB (09-58), AABB-OBB,
+// polygon-polygon (09-62), polygon-segment and segment-segment, with MTD by the least push.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_shapes.h"
+
+namespace jostle {
+namespace {
+
+using test::is_hit;
+using test::is_miss;
+using test::kPi;
+using test::kSqrt2;
+
+const Obb kUnitBox{{0, 0}, {1, 1}, 0.0f};
+
+TEST(SatObb, Separated) {
+    // x: A [-1,1], B [2,4]: gap 1.
+    EXPECT_TRUE(is_miss(collide(kUnitBox, Obb{{3, 0}, {1, 1}, 0.0f})));
+    EXPECT_TRUE(is_miss(collide(kUnitBox, Obb{{0, -2.001f}, {1, 1}, 0.0f})));
+}
+
+TEST(SatObb, Overlapping) {
+    // B at (1.5,0.5): x pushes min(1-0.5, 2.5+1) = 0.5; y pushes min(1+0.5, 1.5+1) = 1.5.
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{1.5f, 0.5f}, {1, 1}, 0.0f}), 0.5f, {1, 0}));
+    // B above-left at (-0.5,-1.75): x push min(1+1.5, 0.5+1) = 1.5; y push min(1+2.75, -0.75+1) = 0.25;
+    // A moves down by 0.25: normal (0,-1).
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{-0.5f, -1.75f}, {1, 1}, 0.0f}), 0.25f, {0, -1}));
+}
+
+TEST(SatObb, TouchingIsAHitWithDepthZero) {
+    // Integer coordinates, axis-aligned edges: x extents [-1,1] and [1,3] share x = 1.
+    const Manifold m = collide(kUnitBox, Obb{{2, 0}, {1, 1}, 0.0f});
+    EXPECT_TRUE(m.hit);
+    EXPECT_EQ(m.depth, 0.0f);
+    EXPECT_VEC_NEAR(m.normal, (Vec2{1, 0}), 1e-6f);
+}
+
+TEST(SatObb, RotatedCornerContact) {
+    // B: half (1,1) turned 45 deg, its left corner at c - sqrt2 = 0.75, i.e. 0.25 inside A's
+    // right face. A's x axis: push min(1 - 0.75, ...) = 0.25. A's y axis: min(1+sqrt2, sqrt2+1)
+    // = 2.41. B's axes (+-1,1)/sqrt2: A spans [-sqrt2, sqrt2], B's centre projects to
+    // +-c/sqrt2 = +-1.530, extent 1: push sqrt2 - 0.530 = 0.884. Least: 0.25 along (1,0).
+    const float c = 1.0f + kSqrt2 - 0.25f;
+    const Manifold m = collide(kUnitBox, Obb{{c, 0}, {1, 1}, kPi / 4});
+    EXPECT_TRUE(is_hit(m, 0.25f, {1, 0}, 1e-5f));
+    // 0.01 short of touching: a miss.
+    EXPECT_TRUE(is_miss(collide(kUnitBox, Obb{{1.0f + kSqrt2 + 0.01f, 0}, {1, 1}, kPi / 4})));
+}
+
+TEST(SatObb, EarlyExitMustNotStopAtOverlappingAxes) {
+    // A = [0,2]^2. B = a diamond (half 1 at 45 deg) off A's corner. Both of A's axes overlap
+    // (B spans x, y in [c - sqrt2, c + sqrt2]); only B's diagonal axis separates.
+    const Obb a{{1, 1}, {1, 1}, 0.0f};
+    // c = 3.2: on (1,1)/sqrt2 A reaches 4/sqrt2 = 2.828, B starts at 6.4/sqrt2 - 1 = 3.525.
+    EXPECT_TRUE(is_miss(collide(a, Obb{{3.2f, 3.2f}, {1, 1}, kPi / 4})));
+    EXPECT_FALSE(overlaps(Shape{a}, Shape{Obb{{3.2f, 3.2f}, {1, 1}, kPi / 4}}));
+    // c = 2.5: B starts at 5/sqrt2 - 1 = 2.5355: push 2.8284 - 2.5355 = 1 - 1/sqrt2 = 0.29289.
+    // Other axes: x, y: min(2 - (2.5 - sqrt2), ...) = 0.914; (-1,1)/sqrt2: 1 + sqrt2 = 2.414.
+    const Manifold m = collide(a, Obb{{2.5f, 2.5f}, {1, 1}, kPi / 4});
+    EXPECT_TRUE(is_hit(m, 1.0f - 1.0f / kSqrt2, {1.0f / kSqrt2, 1.0f / kSqrt2}, 1e-5f));
+    // The same in the other order: the separating axis is now the first shape's.
+    EXPECT_TRUE(is_miss(collide(Obb{{3.2f, 3.2f}, {1, 1}, kPi / 4}, a)));
+    EXPECT_TRUE(is_hit(collide(Obb{{2.5f, 2.5f}, {1, 1}, kPi / 4}, a), 1.0f - 1.0f / kSqrt2,
+                       {-1.0f / kSqrt2, -1.0f / kSqrt2}, 1e-5f));
+}
+
+TEST(SatObb, CoincidentIdenticalBoxes) {
+    // Same box twice, half (2,1) at 0.3 rad: the pushes are the full widths, 4 along the box's
+    // x axis and 2 along its y axis (-sin .3, cos .3): depth 2 along +-y axis.
+    const Obb b{{5, -3}, {2, 1}, 0.3f};
+    const Manifold m = collide(b, b);
+    EXPECT_TRUE(m.hit);
+    EXPECT_NEAR(m.depth, 2.0f, 1e-5f);
+    EXPECT_TRUE(test::is_unit(m.normal));
+    EXPECT_NEAR(std::fabs(dot(m.normal, Vec2{-std::sin(0.3f), std::cos(0.3f)})), 1.0f, 1e-5f);
+}
+
+TEST(SatObb, Containment) {
+    // A: [-5,5]^2; B: [3.5,4.5]x[-0.5,0.5] (half 0.5 at (4,0)). A moves: left until A.max.x = 3.5
+    // (1.5), right (9.5), up/down (5.5): 1.5 to the left, normal (1,0). The intersection width is 1.
+    EXPECT_TRUE(is_hit(collide(Obb{{0, 0}, {5, 5}, 0.0f}, Obb{{4, 0}, {0.5f, 0.5f}, 0.0f}), 1.5f, {1, 0}));
+    EXPECT_TRUE(is_hit(collide(Obb{{4, 0}, {0.5f, 0.5f}, 0.0f}, Obb{{0, 0}, {5, 5}, 0.0f}), 1.5f, {-1, 0}));
+}
+
+TEST(SatAabbObb, MatchesTheObbOfTheSameBox) {
+    const Aabb a{{0, 0}, {2, 2}};
+    // The diamond cases from EarlyExitMustNotStopAtOverlappingAxes.
+    EXPECT_TRUE(is_miss(collide(a, Obb{{3.2f, 3.2f}, {1, 1}, kPi / 4})));
+    EXPECT_TRUE(is_hit(collide(a, Obb{{2.5f, 2.5f}, {1, 1}, kPi / 4}), 1.0f - 1.0f / kSqrt2,
+                       {1.0f / kSqrt2, 1.0f / kSqrt2}, 1e-5f));
+    // Axis-aligned OBB overlapping the right face by 0.5: B x [1.5,3.5], y [0.5,1.5].
+    EXPECT_TRUE(is_hit(collide(a, Obb{{2.5f, 1}, {1, 0.5f}, 0.0f}), 0.5f, {1, 0}));
+    // Touching: B x [2,4].
+    const Manifold t = collide(a, Obb{{3, 1}, {1, 1}, 0.0f});
+    EXPECT_TRUE(t.hit);
+    EXPECT_EQ(t.depth, 0.0f);
+}
+
+TEST(SatPolygon, SquareAndTriangle) {
+    // A = [0,4]^2, B = (3,1),(6,2),(3,3). Pushes of A: x: min(4-3, 6-0) = 1; y: min(4-1, 3-0) = 3;
+    // B's edge (3,1)->(6,2), normal (1,-3)/sqrt10: A [-12,4], B [-6,0] -> min(10, 12)/sqrt10 = 3.16;
+    // edge (6,2)->(3,3), normal (1,3)/sqrt10: A [0,16], B [6,12] -> min(10,12)/sqrt10 = 3.16.
+    // Least: 1 along (1,0).
+    const Polygon a = test::box_polygon(0, 0, 4, 4);
+    const Polygon b = test::polygon_or_die({{3, 1}, {6, 2}, {3, 3}});
+    EXPECT_TRUE(is_hit(collide(a, b), 1.0f, {1, 0}));
+    EXPECT_TRUE(is_hit(collide(b, a), 1.0f, {-1, 0}));
+    // Moved right by 1.01: separated on x.
+    EXPECT_TRUE(is_miss(collide(a, test::moved(b, {1.01f, 0}))));
+    // Moved right by 1: touching.
+    const Manifold t = collide(a, test::moved(b, {1, 0}));
+    EXPECT_TRUE(t.hit);
+    EXPECT_EQ(t.depth, 0.0f);
+}
+
+TEST(SatPolygon, ContainmentGivesTheSmallestPush) {
+    // Big A = [0,10]^2 holds the small triangle (4,1),(6,1),(5,2) near its top edge. A must move
+    // down until A.min.y = 2 (push 2) rather than up (9); x: min(10-4, 6-0) = 6; the triangle's
+    // slanted normals (1,1)/sqrt2 and (-1,1)/sqrt2: 7/sqrt2 = 4.95. Depth 2, mtd (0,2), normal (0,-1).
+    // (The intersection is the triangle itself, 1 tall: not the answer.)
+    const Polygon big = test::box_polygon(0, 0, 10, 10);
+    const Polygon tri = test::polygon_or_die({{4, 1}, {6, 1}, {5, 2}});
+    const Manifold m = collide(big, tri);
+    EXPECT_TRUE(is_hit(m, 2.0f, {0, -1}));
+    EXPECT_VEC_NEAR(m.mtd(), (Vec2{0, 2}), 1e-5f);
+    EXPECT_TRUE(is_hit(collide(tri, big), 2.0f, {0, 1}));
+}
+
+TEST(SatPolygon, CoincidentIdenticalTriangles) {
+    // (0,0),(4,0),(0,3) against itself: widths along the normals are 3 (y), 4 (x) and the
+    // altitude to the hypotenuse, 2 * area / 5 = 12/5 = 2.4, along +-(3,4)/5.
+    const Polygon t = test::polygon_or_die({{0, 0}, {4, 0}, {0, 3}});
+    const Manifold m = collide(t, t);
+    EXPECT_TRUE(m.hit);
+    EXPECT_NEAR(m.depth, 2.4f, 1e-5f);
+    EXPECT_NEAR(std::fabs(dot(m.normal, Vec2{0.6f, 0.8f})), 1.0f, 1e-5f);
+}
+
+TEST(SatPolygon, SeparatedOnlyOnTheDiagonalAxis) {
+    // Triangle A (0,0),(4,0),(0,4) and triangle B (3,3),(5,3),(3,5): on x and y they overlap
+    // ([0,4] vs [3,5]); only the hypotenuse normal (1,1)/sqrt2 separates: A reaches 4/sqrt2,
+    // B starts at 6/sqrt2.
+    const Polygon a = test::polygon_or_die({{0, 0}, {4, 0}, {0, 4}});
+    const Polygon b = test::polygon_or_die({{3, 3}, {5, 3}, {3, 5}});
+    EXPECT_TRUE(is_miss(collide(a, b)));
+    EXPECT_TRUE(is_miss(collide(b, a)));
+    // B moved by (-1.5,-1.5): starts at 3/sqrt2, push (4-3)/sqrt2 = 0.7071 along (1,1)/sqrt2;
+    // x: min(4-1.5, 3.5-0) = 2.5, y the same.
+    const Manifold m = collide(a, test::moved(b, {-1.5f, -1.5f}));
+    EXPECT_TRUE(is_hit(m, 1.0f / kSqrt2, {1.0f / kSqrt2, 1.0f / kSqrt2}, 1e-5f));
+}
+
+TEST(SatPolygonSegment, SegmentCrossingASquare) {
+    // A = [0,4]^2, segment x = 3 from y = -1 to 5. x: min(4-3, 3-0) = 1; y: min(4+1, 5-0) = 5.
+    const Polygon a = test::box_polygon(0, 0, 4, 4);
+    EXPECT_TRUE(is_hit(collide(a, Segment{{3, -1}, {3, 5}}), 1.0f, {1, 0}));
+    // Inside, at y = 1 from x = 1 to 3: y: min(4-1, 1-0) = 1 (A moves down), x: 3. normal (0,-1).
+    EXPECT_TRUE(is_hit(collide(a, Segment{{1, 1}, {3, 1}}), 1.0f, {0, -1}));
+    EXPECT_TRUE(is_miss(collide(a, Segment{{5, 0}, {6, 5}})));
+    // A segment across the square's corner on x + y = 7, from (2,5) to (5,2): the corner (4,4)
+    // is (8-7)/sqrt2 = 0.7071 beyond it along (1,1)/sqrt2. x and y: min(4-2, 5-0) = 2; the
+    // segment's direction (1,-1)/sqrt2: A [-2.83, 2.83], S [-2.12, 2.12]: 4.95.
+    EXPECT_TRUE(is_hit(collide(a, Segment{{2, 5}, {5, 2}}), 1.0f / kSqrt2, {1.0f / kSqrt2, 1.0f / kSqrt2}, 1e-5f));
+    // x + y = 8.2: missed though the bounds overlap ([3.1,5.1] x [3.1,5.1] vs [0,4]^2).
+    EXPECT_TRUE(is_miss(collide(a, Segment{{3.1f, 5.1f}, {5.1f, 3.1f}})));
+}
+
+TEST(SatPolygonSegment, TouchingAVertexEndOn) {
+    // Segment (4,4)-(6,6) starts at A's corner: a hit with depth 0.
+    const Manifold m = collide(test::box_polygon(0, 0, 4, 4), Segment{{4, 4}, {6, 6}});
+    EXPECT_TRUE(m.hit);
+    EXPECT_EQ(m.depth, 0.0f);
+    EXPECT_TRUE(test::is_unit(m.normal));
+    EXPECT_GT(dot(m.normal, Vec2{1, 1}), 0.0f);
+}
+
+TEST(SatPolygonSegment, PointSegmentInsideSquare) {
+    // A zero-length segment at (1,2) in [0,4]^2: A moves right by 1 (x: min(4-1, 1-0) = 1;
+    // y: min(4-2, 2-0) = 2), mtd (1,0), normal (-1,0).
+    EXPECT_TRUE(is_hit(collide(test::box_polygon(0, 0, 4, 4), Segment{{1, 2}, {1, 2}}), 1.0f, {-1, 0}));
+}
+
+TEST(SatSegment, CrossingSegmentsHit) {
+    // S1 (0,0)-(10,0), S2 (5,-1)-(5,3). Axes: S1's normal: S1 [0,0], S2 [-1,3]: min(0+1, 3-0) = 1;
+    // S1's direction: [0,10] vs [5,5]: 5; S2's axes are the same two. The Minkowski difference
+    // is the rectangle [-5,5]x[-3,1]: depth 1, S1 moves up, normal (0,1).
+    EXPECT_TRUE(is_hit(collide(Segment{{0, 0}, {10, 0}}, Segment{{5, -1}, {5, 3}}), 1.0f, {0, 1}));
+    // An X: depth 2 sqrt2 on every axis.
+    const Manifold x = collide(Segment{{0, 0}, {4, 4}}, Segment{{0, 4}, {4, 0}});
+    EXPECT_TRUE(x.hit);
+    EXPECT_NEAR(x.depth, 2 * kSqrt2, 1e-5f);
+    EXPECT_TRUE(test::is_unit(x.normal));
+}
+
+TEST(SatSegment, TJunctionTouches) {
+    // S2 starts on S1: S1's normal gives push min(0-0, 3-0) = 0, S1 moves up by 0: normal (0,1).
+    const Manifold m = collide(Segment{{0, 0}, {4, 0}}, Segment{{2, 0}, {2, 3}});
+    EXPECT_TRUE(m.hit);
+    EXPECT_EQ(m.depth, 0.0f);
+    EXPECT_VEC_NEAR(m.normal, (Vec2{0, 1}), 1e-6f);
+    EXPECT_TRUE(is_miss(collide(Segment{{0, 0}, {4, 0}}, Segment{{2, 0.001f}, {2, 3}})));
+}
+
+TEST(SatSegment, CollinearDisjointSegmentsDoNotHit) {
+    // Same line, [0,2] and [3,5]: both normals give push 0, only the direction axis separates.
+    EXPECT_TRUE(is_miss(collide(Segment{{0, 0}, {2, 0}}, Segment{{3, 0}, {5, 0}})));
+    EXPECT_TRUE(is_miss(collide(Segment{{0, 0}, {2, 2}}, Segment{{3, 3}, {5, 5}})));
+    EXPECT_TRUE(is_miss(collide(Segment{{0, 0}, {0, 2}}, Segment{{0, -1}, {0, -3}})));
+    EXPECT_FALSE(overlaps(Shape{Segment{{0, 0}, {2, 0}}}, Shape{Segment{{3, 0}, {5, 0}}}));
+}
+
+TEST(SatSegment, CollinearTouchingAndOverlapping) {
+    const Manifold t = collide(Segment{{0, 0}, {2, 0}}, Segment{{2, 0}, {5, 0}});
+    EXPECT_TRUE(t.hit);
+    EXPECT_EQ(t.depth, 0.0f);
+    EXPECT_TRUE(test::is_unit(t.normal));
+    // Overlapping on [2,3]: any sideways nudge separates them, so depth 0 (normal +-y).
+    const Manifold o = collide(Segment{{0, 0}, {3, 0}}, Segment{{2, 0}, {5, 0}});
+    EXPECT_TRUE(o.hit);
+    EXPECT_EQ(o.depth, 0.0f);
+    EXPECT_TRUE(test::is_unit(o.normal));
+}
+
+TEST(SatSegment, ParallelDisjointMiss) {
+    EXPECT_TRUE(is_miss(collide(Segment{{0, 0}, {2, 0}}, Segment{{0, 1}, {2, 1}})));
+    EXPECT_TRUE(is_miss(collide(Segment{{0, 0}, {2, 2}}, Segment{{1, 0}, {3, 2}})));
+}
+
+TEST(SatSegment, ZeroLengthSegments) {
+    // A point on a segment touches it.
+    const Manifold p = collide(Segment{{2, 0}, {2, 0}}, Segment{{0, 0}, {4, 0}});
+    EXPECT_TRUE(p.hit);
+    EXPECT_EQ(p.depth, 0.0f);
+    EXPECT_TRUE(test::is_unit(p.normal));
+    // A point beside a segment misses.
+    EXPECT_TRUE(is_miss(collide(Segment{{2, 0.5f}, {2, 0.5f}}, Segment{{0, 0}, {4, 0}})));
+    // A point beyond the segment's end on its line misses.
+    EXPECT_TRUE(is_miss(collide(Segment{{5, 0}, {5, 0}}, Segment{{0, 0}, {4, 0}})));
+    // Two equal points touch, with a defined unit normal.
+    const Manifold q = collide(Segment{{1, 1}, {1, 1}}, Segment{{1, 1}, {1, 1}});
+    EXPECT_TRUE(q.hit);
+    EXPECT_EQ(q.depth, 0.0f);
+    EXPECT_TRUE(test::is_unit(q.normal));
+    EXPECT_TRUE(is_miss(collide(Segment{{1, 1}, {1, 1}}, Segment{{2, 1}, {2, 1}})));
+}
+
+}  // namespace
+}  // namespace jostle

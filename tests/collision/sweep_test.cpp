@@ -1,0 +1,299 @@
+// Sweep tests (sweep.cpp, slides 09-103 to 09-130): the D/F/G closed form for a moving circle
+// against a static one, two moving circles by relative velocity, the swept capsule (with the
+// slide's perpendicular corrected), and circles swept against boxes, polygons and segments.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_shapes.h"
+
+namespace jostle {
+namespace {
+
+using test::is_miss;
+using test::kPi;
+using test::kSqrt2;
+
+::testing::AssertionResult is_sweep(const SweepHit& h, float t, Vec2 point, Vec2 normal, float tol = 1e-5f,
+                                    float point_tol = 1e-4f) {
+    if (h.hit && std::fabs(h.t - t) <= tol && test::vec_near(h.point, point, point_tol) &&
+        test::vec_near(h.normal, normal, tol)) {
+        return ::testing::AssertionSuccess();
+    }
+    return ::testing::AssertionFailure() << "expected t " << t << " point (" << point.x << ", " << point.y
+                                         << ") normal (" << normal.x << ", " << normal.y << "), got hit=" << h.hit
+                                         << " t=" << h.t << " point=(" << h.point.x << ", " << h.point.y
+                                         << ") normal=(" << h.normal.x << ", " << h.normal.y << ")";
+}
+
+const Circle kMoving{{0, 0}, 1};
+
+TEST(SweepCircle, HandComputedDFG) {
+    // 09-118..122: moving r 1 at (0,0), v = (10,0); static r 1 at (5,0).
+    // D = v/|v| . (Cs - Cd) = 5; F^2 = 25 - 25 = 0; G^2 = (1+1)^2 - 0 = 4, G = 2;
+    // contact after D - G = 3 of |v| = 10: t = 0.3. Centre then (3,0); contact point (4,0).
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, Circle{{5, 0}, 1}), 0.3f, {4, 0}, {1, 0}));
+}
+
+TEST(SweepCircle, OffAxis) {
+    // Static at (5,1): D = 5, F^2 = 26 - 25 = 1, G^2 = 4 - 1 = 3, D - G = 5 - sqrt3 = 3.268:
+    // t = 0.3268. Centre (3.268,0); normal ((5,1) - (3.268,0))/2 = (0.8660, 0.5); point centre + n.
+    const float s3 = std::sqrt(3.0f);
+    const float t = (5 - s3) / 10;
+    const Vec2 n{s3 / 2, 0.5f};
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, Circle{{5, 1}, 1}), t, Vec2{10 * t, 0} + n, n));
+}
+
+TEST(SweepCircle, MovingAwayMisses) {
+    // (Cs - Cd) . v = 5 * -10 < 0 (09-114).
+    EXPECT_TRUE(is_miss(sweep(kMoving, {-10, 0}, Circle{{5, 0}, 1})));
+    EXPECT_TRUE(is_miss(sweep(kMoving, {0, 10}, Circle{{5, 0}, 1})));
+}
+
+TEST(SweepCircle, AlreadyOverlappingIsTimeZero) {
+    const SweepHit h = sweep(kMoving, {10, 0}, Circle{{1, 0}, 1});
+    EXPECT_TRUE(h.hit);
+    EXPECT_EQ(h.t, 0.0f);
+    EXPECT_TRUE(test::is_unit(h.normal));
+    EXPECT_TRUE(is_finite(h.point));
+    // Overlapping while moving apart: still overlapping at t = 0 (the slide's moving-away early
+    // out must not hide it).
+    const SweepHit a = sweep(kMoving, {-10, 0}, Circle{{1, 0}, 1});
+    EXPECT_TRUE(a.hit);
+    EXPECT_EQ(a.t, 0.0f);
+    // Not moving at all.
+    const SweepHit z = sweep(kMoving, {0, 0}, Circle{{1, 0}, 1});
+    EXPECT_TRUE(z.hit);
+    EXPECT_EQ(z.t, 0.0f);
+    EXPECT_TRUE(is_miss(sweep(kMoving, {0, 0}, Circle{{5, 0}, 1})));
+}
+
+TEST(SweepCircle, TouchingAtTheStart) {
+    // Centres 2 apart, radii 1 + 1: touching at t = 0 whichever way it moves.
+    const SweepHit in = sweep(kMoving, {1, 0}, Circle{{2, 0}, 1});
+    EXPECT_TRUE(in.hit);
+    EXPECT_EQ(in.t, 0.0f);
+    EXPECT_VEC_NEAR(in.normal, (Vec2{1, 0}), 1e-6f);
+    EXPECT_VEC_NEAR(in.point, (Vec2{1, 0}), 1e-6f);
+    const SweepHit away = sweep(kMoving, {-1, 0}, Circle{{2, 0}, 1});
+    EXPECT_TRUE(away.hit);
+    EXPECT_EQ(away.t, 0.0f);
+}
+
+TEST(SweepCircle, PassesBeside) {
+    // Static at (5,2.5): F^2 = 6.25 > (1+1)^2 = 4 (09-121): the closest approach is too far.
+    EXPECT_TRUE(is_miss(sweep(kMoving, {10, 0}, Circle{{5, 2.5f}, 1})));
+}
+
+TEST(SweepCircle, Grazing) {
+    // Static at (5,2): F^2 = 29 - 25 = 4 = R^2, G = 0: touches at D = 5, t = 0.5, normal (0,1).
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, Circle{{5, 2}, 1}), 0.5f, {5, 1}, {0, 1}, 1e-4f));
+}
+
+TEST(SweepCircle, TooShort) {
+    // |v| = 2 < D - G = 3.
+    EXPECT_TRUE(is_miss(sweep(kMoving, {2, 0}, Circle{{5, 0}, 1})));
+    EXPECT_TRUE(is_miss(sweep(kMoving, {2.99f, 0}, Circle{{5, 0}, 1})));
+    // |v| = 3 exactly: contact at the end of the frame, t = 1.
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {3, 0}, Circle{{5, 0}, 1}), 1.0f, {4, 0}, {1, 0}));
+}
+
+TEST(SweepCircle, ZeroRadiusMovingPointIsARayCast) {
+    // A point from (0,0) by (10,0) against r 2 at (5,0): contact at x = 3, t = 0.3.
+    EXPECT_TRUE(is_sweep(sweep(Circle{{0, 0}, 0}, {10, 0}, Circle{{5, 0}, 2}), 0.3f, {3, 0}, {1, 0}));
+}
+
+TEST(SweepTwoCircles, HeadOn) {
+    // a (0,0) by (5,0), b (10,0) by (-5,0): relative v = (10,0) against b fixed: contact after
+    // 10 - 2 = 8: t = 0.8. Then a at (4,0), b at (6,0): point (5,0), normal (1,0).
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {5, 0}, Circle{{10, 0}, 1}, {-5, 0}), 0.8f, {5, 0}, {1, 0}));
+}
+
+TEST(SweepTwoCircles, ChasingAndParallel) {
+    // a (0,0) by (10,0) catches b (4,0) by (5,0): relative (5,0), D - G = 4 - 2 = 2: t = 0.4.
+    // Then a at (4,0), b at (6,0).
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, Circle{{4, 0}, 1}, {5, 0}), 0.4f, {5, 0}, {1, 0}));
+    // Same velocity: the gap never closes.
+    EXPECT_TRUE(is_miss(sweep(kMoving, {5, 0}, Circle{{3, 0}, 1}, {5, 0})));
+    // b moving out of the way faster: relative (-5,0), moving apart.
+    EXPECT_TRUE(is_miss(sweep(kMoving, {5, 0}, Circle{{3, 0}, 1}, {10, 0})));
+}
+
+TEST(SweptCapsule, CornersUseTheCorrectedPerpendicular) {
+    // c = (1,2), r = 2, v = (3,4), |v| = 5: d = [-v_y, v_x] r/|v| = (-4,3)*0.4 = (-1.6,1.2).
+    const Circle c{{1, 2}, 2};
+    const Vec2 v{3, 4};
+    const SweptCapsule cap = swept_capsule(c, v);
+    EXPECT_EQ(cap.start.center, (Vec2{1, 2}));
+    EXPECT_EQ(cap.start.radius, 2.0f);
+    EXPECT_EQ(cap.end.center, (Vec2{4, 6}));
+    EXPECT_EQ(cap.end.radius, 2.0f);
+    // c + d, c + v + d, c + v - d, c - d.
+    EXPECT_VEC_NEAR(cap.rectangle[0], (Vec2{-0.6f, 3.2f}), 1e-5f);
+    EXPECT_VEC_NEAR(cap.rectangle[1], (Vec2{2.4f, 7.2f}), 1e-5f);
+    EXPECT_VEC_NEAR(cap.rectangle[2], (Vec2{5.6f, 4.8f}), 1e-5f);
+    EXPECT_VEC_NEAR(cap.rectangle[3], (Vec2{2.6f, 0.8f}), 1e-5f);
+    // Every corner offset is perpendicular to v and r long.
+    const Vec2 offsets[4] = {cap.rectangle[0] - c.center, cap.rectangle[1] - (c.center + v),
+                             cap.rectangle[2] - (c.center + v), cap.rectangle[3] - c.center};
+    for (const Vec2& d : offsets) {
+        EXPECT_NEAR(dot(d, v), 0.0f, 1e-5f);
+        EXPECT_NEAR(length(d), 2.0f, 1e-5f);
+    }
+}
+
+TEST(SweptCapsule, TheSlidesPerpendicularIsWrong) {
+    // The slide writes d = [-v_x, v_y] r/|v|. For v = (3,4): (-3,4) . (3,4) = -9 + 16 = 7 != 0,
+    // so it is not perpendicular to v; [-v_y, v_x] = (-4,3) is: -12 + 12 = 0.
+    const Vec2 v{3, 4};
+    const Vec2 slide{-v.x, v.y};
+    EXPECT_NE(dot(slide, v), 0.0f);
+    EXPECT_EQ(dot(perp(v), v), 0.0f);
+    // The capsule's corner is not where the slide's formula puts it.
+    const SweptCapsule cap = swept_capsule(Circle{{0, 0}, 5}, v);
+    const Vec2 slide_corner = (5.0f / 5.0f) * slide;  // r/|v| = 1
+    EXPECT_GT(length(cap.rectangle[0] - slide_corner), 1.0f);
+    EXPECT_VEC_NEAR(cap.rectangle[0], (Vec2{-4, 3}), 1e-5f);
+}
+
+TEST(SweptCapsule, AxisAlignedAndZeroVelocity) {
+    // v = (5,0), r = 1 at the origin: d = (0,5)/5 = (0,1).
+    const SweptCapsule cap = swept_capsule(Circle{{0, 0}, 1}, {5, 0});
+    EXPECT_VEC_NEAR(cap.rectangle[0], (Vec2{0, 1}), 1e-6f);
+    EXPECT_VEC_NEAR(cap.rectangle[1], (Vec2{5, 1}), 1e-6f);
+    EXPECT_VEC_NEAR(cap.rectangle[2], (Vec2{5, -1}), 1e-6f);
+    EXPECT_VEC_NEAR(cap.rectangle[3], (Vec2{0, -1}), 1e-6f);
+    // v = 0: every corner is c, no NaN.
+    const SweptCapsule still = swept_capsule(Circle{{3, 4}, 2}, {0, 0});
+    for (const Vec2& p : still.rectangle) EXPECT_EQ(p, (Vec2{3, 4}));
+    EXPECT_EQ(still.start.center, (Vec2{3, 4}));
+    EXPECT_EQ(still.end.center, (Vec2{3, 4}));
+}
+
+TEST(SweptOverlaps, AgreesWithSweepOnHandCases) {
+    struct Case {
+        Vec2 v;
+        Circle fixed;
+        bool expected;
+    };
+    const Case cases[] = {
+        {{10, 0}, {{5, 0}, 1}, true},      // t = 0.3
+        {{-10, 0}, {{5, 0}, 1}, false},    // moving away
+        {{10, 0}, {{5, 2.5f}, 1}, false},  // passes beside
+        {{10, 0}, {{5, 1.9f}, 1}, true},   // just inside the path
+        {{2, 0}, {{5, 0}, 1}, false},      // too short
+        {{3, 0}, {{5, 0}, 1}, true},       // ends touching
+        {{10, 0}, {{1, 0}, 1}, true},      // overlapping at the start
+        {{-10, 0}, {{1, 0}, 1}, true},     // overlapping at the start, moving away
+        {{0, 0}, {{1, 0}, 1}, true},       // not moving, overlapping
+        {{0, 0}, {{5, 0}, 1}, false},      // not moving, apart
+        {{10, 10}, {{12, 12}, 1}, false},  // beyond the end, past the end cap
+        {{10, 10}, {{11, 11}, 1}, true},   // inside the end cap
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(::testing::Message() << "v (" << c.v.x << ", " << c.v.y << ") fixed (" << c.fixed.center.x
+                                          << ", " << c.fixed.center.y << ")");
+        EXPECT_EQ(swept_overlaps(kMoving, c.v, c.fixed), c.expected);
+        EXPECT_EQ(sweep(kMoving, c.v, c.fixed).hit, c.expected);
+    }
+}
+
+TEST(SweptOverlaps, AgreesWithSweepFarFromTheOrigin) {
+    // r 0.25 from (o,o) by (1,0); fixed r 0.25 at (o+0.5, o+0.4). The path passes 0.4 from the
+    // fixed centre, closer than 0.25 + 0.25: they touch mid-frame (neither end circle does:
+    // both are sqrt(0.41) = 0.64 away). All values are exact floats at these offsets.
+    for (const float o : {0.0f, 10000.0f, 50000.0f, 100000.0f}) {
+        SCOPED_TRACE(::testing::Message() << "offset " << o);
+        const Circle moving{{o, o}, 0.25f};
+        const Circle fixed{{o + 0.5f, o + 0.4f}, 0.25f};
+        EXPECT_TRUE(sweep(moving, {1, 0}, fixed).hit);
+        EXPECT_TRUE(swept_overlaps(moving, {1, 0}, fixed));
+        // 0.2 further away the path clears it (0.6 > 0.5).
+        EXPECT_FALSE(swept_overlaps(moving, {1, 0}, Circle{{o + 0.5f, o + 0.6f}, 0.25f}));
+    }
+}
+
+TEST(SweepBox, FastBallAgainstAOnePixelWallStopsAtContact) {
+    // r 2 ball at (0,500) moving 1e5 px: touches x = 100 when its centre is at 98: t = 98/1e5.
+    const Circle ball{{0, 500}, 2};
+    const Vec2 v{100000, 0};
+    const float t = 98.0f / 100000.0f;
+    EXPECT_TRUE(is_sweep(sweep(ball, v, Aabb{{100, 0}, {101, 1000}}), t, {100, 500}, {1, 0}, 1e-6f, 1e-2f));
+    EXPECT_TRUE(is_sweep(sweep(ball, v, Obb{{100.5f, 500}, {0.5f, 500}, 0.0f}), t, {100, 500}, {1, 0}, 1e-6f, 1e-2f));
+    EXPECT_TRUE(is_sweep(sweep(ball, v, test::box_polygon(100, 0, 101, 1000)), t, {100, 500}, {1, 0}, 1e-6f, 1e-2f));
+    EXPECT_TRUE(is_sweep(sweep(ball, v, Segment{{100, 0}, {100, 1000}}), t, {100, 500}, {1, 0}, 1e-6f, 1e-2f));
+    // At t the ball only touches the wall (never tunnels past it).
+    const SweepHit h = sweep(ball, v, Aabb{{100, 0}, {101, 1000}});
+    const Manifold m = collide(Aabb{{100, 0}, {101, 1000}}, Circle{ball.center + h.t * v, ball.radius});
+    EXPECT_LE(m.depth, 0.02f);
+}
+
+TEST(SweepBox, CornerContact) {
+    // r 1 from (0,0) by (10,0); box [5,7]x[0.5,3]. The centre's path y = 0 never meets the left
+    // face's span; first contact is the corner (5,0.5): (x - 5)^2 + 0.25 = 1, x = 5 - sqrt(0.75):
+    // t = (5 - 0.8660)/10 = 0.41340, normal (0.8660, 0.5), point the corner.
+    const float k = std::sqrt(0.75f);
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, Aabb{{5, 0.5f}, {7, 3}}), (5 - k) / 10, {5, 0.5f}, {k, 0.5f}));
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, test::box_polygon(5, 0.5f, 7, 3)), (5 - k) / 10, {5, 0.5f}, {k, 0.5f}));
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, Obb{{6, 1.75f}, {1, 1.25f}, 0.0f}), (5 - k) / 10, {5, 0.5f},
+                         {k, 0.5f}));
+    // Box moved down by 0.6: the path clears it.
+    EXPECT_TRUE(is_miss(sweep(kMoving, {10, 0}, Aabb{{5, 1.1f}, {7, 3}})));
+}
+
+TEST(SweepBox, StartsOverlappingAndMisses) {
+    const SweepHit h = sweep(kMoving, {10, 0}, Aabb{{0.5f, -1}, {2, 1}});
+    EXPECT_TRUE(h.hit);
+    EXPECT_EQ(h.t, 0.0f);
+    EXPECT_TRUE(is_miss(sweep(kMoving, {10, 0}, Aabb{{-5, 3}, {15, 4}})));
+    EXPECT_TRUE(is_miss(sweep(kMoving, {-10, 0}, Aabb{{5, -1}, {7, 1}})));
+    EXPECT_TRUE(is_miss(sweep(kMoving, {3, 0}, Aabb{{5, -1}, {7, 1}})));
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {4, 0}, Aabb{{5, -1}, {7, 1}}), 1.0f, {5, 0}, {1, 0}));
+}
+
+TEST(SweepObb, RotatedFace) {
+    // Diamond half 1 at 45 deg around (5,5); r 1 from (0,0) by (5,5): the face with normal
+    // (-1,-1)/sqrt2 lies 1 from the centre; contact when the centre is 2 from it along the
+    // diagonal, i.e. after 5 sqrt2 - 2 of 5 sqrt2: t = 1 - 2/(5 sqrt2) = 0.71716.
+    const float k = 1 / kSqrt2;
+    const float t = 1 - 2 / (5 * kSqrt2);
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {5, 5}, Obb{{5, 5}, {1, 1}, kPi / 4}), t, {5 - k, 5 - k}, {k, k}));
+}
+
+TEST(SweepPolygon, Hypotenuse) {
+    // Triangle (0,0),(4,0),(0,4); r 1 from (6,6) by (-6,-6): distance from (s,s) to x + y = 4 is
+    // (2s - 4)/sqrt2 = 1 at s = 2 + 1/sqrt2: t = (6 - s)/6 = 0.54882; point (2,2); normal (-1,-1)/sqrt2.
+    const Polygon tri = test::polygon_or_die({{0, 0}, {4, 0}, {0, 4}});
+    const float k = 1 / kSqrt2;
+    EXPECT_TRUE(is_sweep(sweep(Circle{{6, 6}, 1}, {-6, -6}, tri), (4 - k) / 6, {2, 2}, {-k, -k}));
+    EXPECT_TRUE(is_miss(sweep(Circle{{6, 6}, 1}, {-2, -2}, tri)));
+}
+
+TEST(SweepSegment, FaceAndEndpoint) {
+    const Segment wall{{0, -1}, {0, 1}};
+    // r 0.5 from (-5,0) by (10,0): centre at x = -0.5: t = 0.45, point (0,0), normal (1,0).
+    EXPECT_TRUE(is_sweep(sweep(Circle{{-5, 0}, 0.5f}, {10, 0}, wall), 0.45f, {0, 0}, {1, 0}));
+    // r 1 from (-5,1.5): the end (0,1) is met when x^2 + 0.25 = 1, x = -0.8660: t = 0.41340,
+    // normal (0.8660,-0.5), point (0,1).
+    const float k = std::sqrt(0.75f);
+    EXPECT_TRUE(is_sweep(sweep(Circle{{-5, 1.5f}, 1}, {10, 0}, wall), (5 - k) / 10, {0, 1}, {k, -0.5f}));
+    EXPECT_TRUE(is_miss(sweep(Circle{{-5, 2.1f}, 1}, {10, 0}, wall)));
+    // A zero-length segment is a point.
+    EXPECT_TRUE(is_sweep(sweep(Circle{{-5, 0}, 1}, {10, 0}, Segment{{0, 0}, {0, 0}}), 0.4f, {0, 0}, {1, 0}));
+}
+
+TEST(SweepShape, RelativeMotion) {
+    // r 1 from (0,0) by (5,0); box [8,10]x[-1,1] by (-5,0): relative (10,0), contact when the
+    // centre is at x = 7 in the box's frame: t = 0.7. Then the ball is at (3.5,0), the box's
+    // left face at 4.5: point (4.5,0).
+    const SweepHit h = sweep(kMoving, {5, 0}, Shape{Aabb{{8, -1}, {10, 1}}}, {-5, 0});
+    EXPECT_TRUE(is_sweep(h, 0.7f, {4.5f, 0}, {1, 0}));
+    // Circle through the generic entry: same as the two-circle sweep.
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {5, 0}, Shape{Circle{{10, 0}, 1}}, {-5, 0}), 0.8f, {5, 0}, {1, 0}));
+    // A static segment through the generic entry.
+    EXPECT_TRUE(is_sweep(sweep(Circle{{-5, 0}, 0.5f}, {10, 0}, Shape{Segment{{0, -1}, {0, 1}}}, {0, 0}), 0.45f,
+                         {0, 0}, {1, 0}));
+}
+
+}  // namespace
+}  // namespace jostle
