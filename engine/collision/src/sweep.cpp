@@ -2,6 +2,7 @@
 // D/F/G closed form, two moving circles by relative velocity, the swept capsule (method #1)
 // as an overlap test, and a moving circle against boxes, polygons, segments and masks, so
 // that no fast ball passes through a thin wall.
+#include <cfloat>
 #include <cmath>
 
 #include "internal.h"
@@ -25,36 +26,58 @@ SweepHit overlap_at_start(const Circle& moving, const Manifold& shape_vs_circle)
 }
 
 // First contact of a circle moving by v with the convex shape given by its vertices and
-// outward edge normals (a segment is the 2-gon a->b, b->a): the centre is cast against the
-// shape grown by r, whose boundary is every edge pushed out by r plus a circle of radius r
-// at every vertex.
+// outward edge normals (a segment is the 2-gon a->b, b->a). The centre moves against the
+// shape grown by r: every face pushed out by r, and a circle of radius r at every vertex.
+// The caller has checked that the circle does not overlap the shape at t = 0.
 SweepHit sweep_rounded(const Circle& moving, Vec2 v, const Vec2* points, const Vec2* normals, int count) {
-    // Worked in coordinates relative to the circle's start, so that a shape far from the
-    // origin keeps the precision of its size.
+    // Worked relative to the circle's start (c = 0), so that a shape far from the origin
+    // keeps the precision of its size.
     const Vec2 from = moving.center;
     const float r = moving.radius;
-    CastHit best{};
-    Vec2 best_normal{};
+    float best_t = INFINITY;
+    int best_face = -1;    // a face hit, or
+    int best_vertex = -1;  // a vertex hit
     for (int i = 0; i < count; ++i) {
         const Vec2 n = normals[i];
-        if (!(dot(v, n) < 0.0f)) continue;  // only faces the centre moves toward
-        const Vec2 a = (points[i] - from) + r * n;
-        const Vec2 b = (points[(i + 1) % count] - from) + r * n;
-        const CastHit h = detail::cast_segment({}, v, a, b);
-        if (h.hit && (!best.hit || h.t < best.t)) { best = h; best_normal = n; }
+        const float closing = -dot(v, n);
+        if (!(closing > 0.0f)) continue;  // only faces the centre moves toward
+        const Vec2 p = points[i] - from;
+        const Vec2 e = points[(i + 1) % count] - points[i];
+        // The gap to the grown face at t = 0 (09-115's "closest approach" along the normal).
+        // No overlap at t = 0 means the gap is >= 0 up to the rounding of its terms: a start
+        // just behind the face by less than that is a touch at t = 0, not a pass-through.
+        const float gap = -dot(n, p) - r;
+        const float rounding = 8.0f * FLT_EPSILON * (std::fabs(dot(n, p)) + r);
+        if (gap < -rounding) continue;  // already past this face's line: it cannot be the entry
+        const float t = gap > 0.0f ? gap / closing : 0.0f;
+        if (!(t <= 1.0f) || !(t < best_t)) continue;
+        const Vec2 q = t * v - p;  // the centre at t, relative to the face's first vertex
+        const float along = dot(q, e);
+        if (along >= 0.0f && along <= dot(e, e)) { best_t = t; best_face = i; best_vertex = -1; }
     }
     if (r > 0.0f) {
         for (int i = 0; i < count; ++i) {
-            const Vec2 p = points[i] - from;
-            const CastHit h = detail::cast_circle({}, v, p, r);
-            if (h.hit && (!best.hit || h.t < best.t)) {
-                best = h;
-                best_normal = normalize_or(h.point - p, Vec2{1.0f, 0.0f});
-            }
+            const CastHit h = detail::cast_circle({}, v, points[i] - from, r);
+            if (h.hit && h.t < best_t) { best_t = h.t; best_vertex = i; best_face = -1; }
         }
     }
-    if (!best.hit) return {};
-    return contact_at(from, v, r, best.t, -best_normal);
+    if (best_face < 0 && best_vertex < 0) return {};
+    Vec2 outward;
+    if (best_face >= 0) {
+        outward = normals[best_face];
+    } else {
+        // A vertex hit whose contact lies in an adjacent face's region is that face's hit
+        // (the two times agree up to rounding there); the face's normal is the exact one.
+        const int i = best_vertex;
+        const int prev = (i + count - 1) % count;
+        const Vec2 q = best_t * v - (points[i] - from);  // centre at t, relative to the vertex
+        const Vec2 e_next = points[(i + 1) % count] - points[i];
+        const Vec2 e_prev = points[i] - points[prev];
+        if (dot(q, e_next) >= 0.0f && dot(q, e_next) <= dot(e_next, e_next)) outward = normals[i];
+        else if (dot(q, e_prev) <= 0.0f && -dot(q, e_prev) <= dot(e_prev, e_prev)) outward = normals[prev];
+        else outward = normalize_or(q, normals[i]);
+    }
+    return contact_at(from, v, r, best_t, -outward);
 }
 
 }  // namespace
