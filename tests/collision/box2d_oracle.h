@@ -85,8 +85,8 @@ inline Contact read_manifold(const b2Manifold& m, float radius_a, float radius_b
     Contact c;
     c.points = m.pointCount;
     c.hit = m.pointCount > 0;
-    c.face_b = m.type == b2Manifold::e_faceB;
     if (!c.hit) return c;
+    c.face_b = m.type == b2Manifold::e_faceB;
     b2WorldManifold wm;
     wm.Initialize(&m, identity(), radius_a, identity(), radius_b);
     c.normal = from_b2(wm.normal);
@@ -97,19 +97,19 @@ inline Contact read_manifold(const b2Manifold& m, float radius_a, float radius_b
 }
 
 inline Contact collide_polygons(const b2PolygonShape& a, const b2PolygonShape& b) {
-    b2Manifold m;
+    b2Manifold m{};  // Box2D leaves fields unset on a miss
     b2CollidePolygons(&m, &a, identity(), &b, identity());
     return read_manifold(m, a.m_radius, b.m_radius);
 }
 
 inline Contact collide_polygon_circle(const b2PolygonShape& a, const b2CircleShape& b) {
-    b2Manifold m;
+    b2Manifold m{};  // Box2D leaves fields unset on a miss
     b2CollidePolygonAndCircle(&m, &a, identity(), &b, identity());
     return read_manifold(m, a.m_radius, b.m_radius);
 }
 
 inline Contact collide_circles(const b2CircleShape& a, const b2CircleShape& b) {
-    b2Manifold m;
+    b2Manifold m{};  // Box2D leaves fields unset on a miss
     b2CollideCircles(&m, &a, identity(), &b, identity());
     return read_manifold(m, a.m_radius, b.m_radius);
 }
