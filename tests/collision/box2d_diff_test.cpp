@@ -1019,6 +1019,20 @@ void compare_cast(const CastTarget& s, Vec2 from, Vec2 to, Stats& st) {
         ++st.agree;
         return;
     }
+    // A circle hit near tangency: the entry point and its normal are ill-conditioned (an
+    // error dF in the path's distance from the centre turns the normal by ~dF / (r cos)), and
+    // Box2D's |f|^2 - r^2 form loses more there than jostle's cross-product form. Judge
+    // jostle's normal against the exact outward normal at jostle's own (verified) hit point.
+    if (s.is_circle) {
+        const D2 rel = d2(jh.point) - d2(s.circle.center);
+        const double exact_err = ex::len(d2(jh.normal) - (1.0 / ex::len(rel)) * rel);
+        const double box2d_err = ex::len(d2(br.normal) - (1.0 / ex::len(rel)) * rel);
+        if (exact_err <= kNormalTol && exact_err < box2d_err) {
+            st.count("box2d_normal_worse");
+            ++st.agree;
+            return;
+        }
+    }
     // Through a vertex (within tol): either face's normal.
     if (!s.is_circle) {
         for (int i = 0; i < s.poly.exact.n; ++i) {
@@ -1180,23 +1194,24 @@ void compare_sweep(const Circle& a, Vec2 va, const CastTarget& b, Vec2 vb, Stats
     if (vb != Vec2{}) st.count("b_moving");
 
     // The manual, against the exact geometry.
-    if (jh.hit ? gmin > tol : gmin < -tol) return st.fail("hit/no-hit wrong (vs exact): " + where());
     if (!jh.hit && (jh.t != 0.0f || jh.point != Vec2{} || jh.normal != Vec2{})) return st.fail("a miss must be all zeros: " + where());
     if (jh.hit && !(jh.t >= 0.0f && jh.t <= 1.0f)) return st.fail("t outside the frame: " + where());
-    if (g0 < -tol) {  // overlapping at t = 0
-        if (jh.t != 0.0f) return st.fail("overlap at t = 0 must report t = 0: " + where());
-        if (g0 < -kToiLo - tol) {
-            if (!b_hit || bt.t != 0.0f) return st.fail("Box2D should report t = 0 for a start this deep: " + where());
-            ++st.agree;
-        } else {
-            ++st.excluded;  // Box2D lets it sink to 3 slop first
-        }
-        return;
-    }
-    if (g0 <= tol) {  // touching at t = 0 within rounding: either answer is right
+    if (g0 <= tol) {
+        // Touching or overlapping at t = 0: a contact at t = 0 while A moves into B, none while
+        // it moves off or along (the manual's moving-away rule; Box2D reports every overlap,
+        // so it is not compared here). "Moving into" is read off the exact gap a moment later.
+        // The gap's rate of change at t = 0 (per unit of t) says which way A moves.
         ++st.excluded;
+        const double h = 1e-6;
+        const double slope = (x.g(h) - g0) / h;
+        const double slope_tol = 1e-3 * ex::len(x.v) + tol;
+        if (g0 < -tol && jh.hit && jh.t != 0.0f) return st.fail("an overlapping start must report t = 0 or no hit: " + where());
+        if (jh.hit && jh.t == 0.0f && !(dot(va - vb, jh.normal) > 0.0f)) return st.fail("t = 0 contact while not moving into B: " + where());
+        if (slope < -slope_tol && gmin < -tol && !jh.hit) return st.fail("moving into B from contact, but no hit: " + where());
+        if (slope > slope_tol && jh.hit && jh.t == 0.0f) return st.fail("moving off B from contact, but a hit: " + where());
         return;
     }
+    if (jh.hit ? gmin > tol : gmin < -tol) return st.fail("hit/no-hit wrong (vs exact): " + where());
     if (jh.hit) {
         const double tj = dd(jh.t);
         const double gj = x.g(tj);

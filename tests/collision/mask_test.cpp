@@ -887,11 +887,13 @@ TEST(MaskClosestPoint, EmptyMaskOrNonFiniteQueryHasNoPoint) {
     const Vec2 q{3, 4};
     for (const PlacedMask& none : {PlacedMask{}, PlacedMask{&clear, 0, 0}}) {
         const ClosestPoint c = closest_point(none, q);
-        EXPECT_EQ(c.point, q);
+        EXPECT_EQ(c.point, (Vec2{0, 0}));  // the manual: point {0, 0} at distance +infinity
         EXPECT_EQ(c.distance, std::numeric_limits<float>::infinity());
     }
     const Mask one = rows_of({"#"});
-    EXPECT_EQ(closest_point(PlacedMask{&one, 0, 0}, {std::nanf(""), 0}).distance, std::numeric_limits<float>::infinity());
+    const ClosestPoint nan_query = closest_point(PlacedMask{&one, 0, 0}, {std::nanf(""), 0});
+    EXPECT_EQ(nan_query.point, (Vec2{0, 0}));
+    EXPECT_EQ(nan_query.distance, std::numeric_limits<float>::infinity());
 }
 
 TEST(MaskClosestPoint, MatchesBruteForce) {

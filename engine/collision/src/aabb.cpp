@@ -5,7 +5,7 @@
 
 namespace jostle {
 
-using detail::finite;
+using detail::valid;
 
 Aabb translate(const Aabb& box, Vec2 offset) { return {box.min + offset, box.max + offset}; }  // 09-10
 
@@ -30,7 +30,7 @@ Aabb rotated_bounds(const Aabb& box, float angle, Vec2 pivot) {
 
 bool overlaps(const Aabb& a, const Aabb& b) {
     // 09-23, written as "all four separations fail" so that NaN compares as no overlap.
-    if (!finite(a) || !finite(b)) return false;
+    if (!valid(a) || !valid(b)) return false;
     return a.max.x >= b.min.x && a.min.x <= b.max.x && a.max.y >= b.min.y && a.min.y <= b.max.y;
 }
 
@@ -45,7 +45,7 @@ Manifold collide(const Aabb& a, const Aabb& b) {
     // neither box contains the other along the axis; in general the push that separates A
     // along +x is a.max.x - b.min.x and along -x is b.max.x - a.min.x (A inside B needs the
     // whole way out). Take the smallest of the four pushes.
-    if (!overlaps(a, b) || !finite(a) || !finite(b)) return {};
+    if (!overlaps(a, b)) return {};
     const float push_left = a.max.x - b.min.x;   // B is to the right: normal +x
     const float push_right = b.max.x - a.min.x;  // B is to the left: normal -x
     const float push_up = a.max.y - b.min.y;     // B is below (y down): normal +y

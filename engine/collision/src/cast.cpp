@@ -1,39 +1,37 @@
 // Casts for bullets, slide 09-103: a bullet is the segment from its last to its next
 // position, and the first place that segment touches a shape is the hit: t, point and the
-// shape's outward normal. Circle by the quadratic, boxes by slabs, polygons by clipping
-// against every edge's half-plane (Cyrus-Beck), masks row band by row band.
+// shape's outward normal. The slide leaves the "how" to the segment tests before it; here:
+// circles by the D/F/G closed form (09-118, the same solver as the sweeps), boxes by slabs,
+// polygons by clipping against every edge's half-plane (Cyrus-Beck), segments by the
+// parametric crossing of 09-78, masks row band by row band.
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "internal.h"
 
 namespace jostle {
 
-using detail::finite;
+using detail::valid;
+using detail::valid_motion;
 
 namespace {
 
 CastHit hit_at(Vec2 from, Vec2 d, float t, Vec2 normal) { return {true, t, from + t * d, normal}; }
 CastHit starts_inside(Vec2 from, Vec2 normal = {}) { return {true, 0.0f, from, normal}; }
 
-// floor/ceil results as ints, clamped first so a far-off float never overflows the cast.
-int index_of(float v) { return static_cast<int>(detail::clamp(v, -2.0f, 2.0f * kMaxMaskSide)); }
-
-// The closed box [lo, hi] by slabs. A start on the boundary gets that face's normal.
-CastHit cast_box(Vec2 from, Vec2 to, Vec2 lo, Vec2 hi) {
-    const Vec2 d = to - from;
-    const bool in_x = from.x >= lo.x && from.x <= hi.x;
-    const bool in_y = from.y >= lo.y && from.y <= hi.y;
-    if (in_x && in_y) {
-        Vec2 n{};
-        if (from.x == lo.x) n = {-1.0f, 0.0f};
-        else if (from.x == hi.x) n = {1.0f, 0.0f};
-        else if (from.y == lo.y) n = {0.0f, -1.0f};
-        else if (from.y == hi.y) n = {0.0f, 1.0f};
-        return starts_inside(from, n);
-    }
+// The segment from + t d, t in [0, 1], against the closed box [lo, hi]: the times it enters
+// and leaves, and the normal of the face it enters by. A start on the boundary gets that
+// face's normal; a start strictly inside gets {0, 0}.
+struct Slab {
+    bool hit = false;
     float t_enter = 0.0f;
     float t_exit = 1.0f;
-    Vec2 normal{};
+    Vec2 normal;
+};
+
+Slab slab(Vec2 from, Vec2 d, Vec2 lo, Vec2 hi) {
+    Slab s;
     const float f[2] = {from.x, from.y};
     const float dd[2] = {d.x, d.y};
     const float l[2] = {lo.x, lo.y};
@@ -52,48 +50,41 @@ CastHit cast_box(Vec2 from, Vec2 to, Vec2 lo, Vec2 hi) {
             t_far = tmp;
             sign = 1.0f;
         }
-        if (t_near > t_enter) {
-            t_enter = t_near;
-            normal = axis == 0 ? Vec2{sign, 0.0f} : Vec2{0.0f, sign};
+        if (t_near > s.t_enter) {
+            s.t_enter = t_near;
+            s.normal = axis == 0 ? Vec2{sign, 0.0f} : Vec2{0.0f, sign};
         }
-        if (t_far < t_exit) t_exit = t_far;
-        if (!(t_enter <= t_exit)) return {};
+        if (t_far < s.t_exit) s.t_exit = t_far;
+        if (!(s.t_enter <= s.t_exit)) return {};
     }
-    return hit_at(from, d, t_enter, normal);
+    s.hit = true;
+    if (s.t_enter == 0.0f) {  // starts in the box: on a face, or strictly inside
+        s.normal = {};
+        if (from.x == lo.x) s.normal = {-1.0f, 0.0f};
+        else if (from.x == hi.x) s.normal = {1.0f, 0.0f};
+        else if (from.y == lo.y) s.normal = {0.0f, -1.0f};
+        else if (from.y == hi.y) s.normal = {0.0f, 1.0f};
+    }
+    return s;
 }
 
-}  // namespace
-
-namespace detail {
-
-CastHit cast_circle(Vec2 from, Vec2 to, Vec2 center, float radius) {
+CastHit cast_box(Vec2 from, Vec2 to, Vec2 lo, Vec2 hi) {
     const Vec2 d = to - from;
-    const Vec2 f = from - center;
-    const float c = dot(f, f) - radius * radius;  // > 0: from is outside
-    if (c <= 0.0f) {
-        const float len = length(f);
-        return starts_inside(from, c == 0.0f && len > 0.0f ? Vec2{f.x / len, f.y / len} : Vec2{});
-    }
-    const float a = dot(d, d);
-    const float b = dot(f, d);
-    if (!(a > 0.0f) || b >= 0.0f) return {};  // not moving, or moving away from the centre
-    const float disc = b * b - a * c;
-    if (disc < 0.0f) return {};
-    // The smaller root of a t^2 + 2 b t + c = 0, in the form that does not cancel (b < 0).
-    const float t = c / (-b + std::sqrt(disc));
-    if (!(t <= 1.0f)) return {};
-    const Vec2 p = from + t * d;
-    return {true, t, p, normalize_or(p - center, Vec2{1.0f, 0.0f})};
+    const Slab s = slab(from, d, lo, hi);
+    if (!s.hit) return {};
+    if (s.t_enter == 0.0f) return starts_inside(from, s.normal);
+    return hit_at(from, d, s.t_enter, s.normal);
 }
 
-CastHit cast_segment(Vec2 from, Vec2 to, Vec2 a, Vec2 b) {
+// A segment as a zero-thickness wall: where the bullet crosses it (09-78's crossing, by
+// parameters along both), and the wall's normal on the side the bullet comes from.
+CastHit cast_wall(Vec2 from, Vec2 to, Vec2 a, Vec2 b) {
     const Vec2 r = to - from;
     const Vec2 s = b - a;
     const Vec2 qp = a - from;
-    // The wall's normal on the side the bullet comes from (against the motion if it starts on it).
     Vec2 n = normalize_or(Vec2{s.y, -s.x}, Vec2{});
     const float side = dot(n, from - a);
-    if (side < 0.0f || (side == 0.0f && dot(n, r) > 0.0f)) n = -n;
+    if (side < 0.0f || (side == 0.0f && dot(n, r) > 0.0f)) n = -n;  // against the motion if on it
     const float denom = cross(r, s);
     if (denom != 0.0f) {
         const float t = cross(qp, s) / denom;
@@ -102,37 +93,46 @@ CastHit cast_segment(Vec2 from, Vec2 to, Vec2 a, Vec2 b) {
         if (t == 0.0f) return starts_inside(from, n);
         return hit_at(from, r, t, n);
     }
-    // Parallel: a hit only when on one line; then the first end the bullet reaches.
+    // Parallel: a hit only when on one line; then the first end the bullet reaches, whose
+    // outward normal faces the bullet.
     if (cross(qp, r) != 0.0f) return {};
     const float rr = dot(r, r);
-    if (rr == 0.0f) {  // the bullet does not move: is it on the wall?
-        return closest_point(Segment{a, b}, from) == from ? starts_inside(from) : CastHit{};
-    }
+    if (rr == 0.0f) return detail::offset_from_segment(a, b, from) == Vec2{} ? starts_inside(from) : CastHit{};
     const float ta = dot(qp, r) / rr;
     const float tb = dot(b - from, r) / rr;
     const float lo = ta < tb ? ta : tb;
     const float hi = ta < tb ? tb : ta;
     if (hi < 0.0f || lo > 1.0f) return {};
     if (lo <= 0.0f) return starts_inside(from);
-    const float len = std::sqrt(rr);
-    return hit_at(from, r, lo, Vec2{-r.x / len, -r.y / len});  // the wall's end faces the bullet
+    return hit_at(from, r, lo, normalize_or(-r, Vec2{}));
 }
 
-}  // namespace detail
+}  // namespace
+
+CastHit detail::cast_circle(Vec2 from, Vec2 to, Vec2 center, float radius) {
+    const Vec2 f = from - center;
+    const float c = dot(f, f) - radius * radius;
+    if (c <= 0.0f) {  // starts in the circle: on it (its normal there) or strictly inside
+        return starts_inside(from, c == 0.0f ? normalize_or(f, Vec2{}) : Vec2{});
+    }
+    const CircleContact contact = first_contact_with_circle(-f, to - from, radius);
+    if (!contact.hit) return {};
+    return hit_at(from, to - from, contact.t, contact.outward);
+}
 
 CastHit cast(Vec2 from, Vec2 to, const Circle& c) {
-    if (!finite(from) || !finite(to) || !finite(c)) return {};
+    if (!valid_motion(from, to - from) || !valid(c)) return {};
     return detail::cast_circle(from, to, c.center, c.radius);
 }
 
 CastHit cast(Vec2 from, Vec2 to, const Aabb& box) {
-    if (!finite(from) || !finite(to) || !finite(box)) return {};
+    if (!valid_motion(from, to - from) || !valid(box)) return {};
     return cast_box(from, to, box.min, box.max);
 }
 
 CastHit cast(Vec2 from, Vec2 to, const Obb& box) {
     // The slab test in the box's own frame; t is the same in both frames.
-    if (!finite(from) || !finite(to) || !finite(box)) return {};
+    if (!valid_motion(from, to - from) || !valid(box)) return {};
     const Rot q = Rot::from_angle(box.angle);
     CastHit h = cast_box(inv_rotate(q, from - box.center), inv_rotate(q, to - box.center), -box.half, box.half);
     if (!h.hit) return h;
@@ -144,7 +144,7 @@ CastHit cast(Vec2 from, Vec2 to, const Obb& box) {
 CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
     // Cyrus-Beck: the segment enters the convex polygon at the latest entering edge and
     // leaves it at the earliest leaving edge.
-    if (!finite(from) || !finite(to) || !finite(poly)) return {};
+    if (!valid_motion(from, to - from) || !valid(poly)) return {};
     const Vec2 d = to - from;
     float max_side = -INFINITY;
     int max_edge = 0;
@@ -176,79 +176,54 @@ CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
 }
 
 CastHit cast(Vec2 from, Vec2 to, const Segment& seg) {
-    if (!finite(from) || !finite(to) || !finite(seg)) return {};
-    if (seg.a == seg.b) {  // a point: hit only when the bullet's path runs through it
-        const Vec2 r = to - from;
-        const Vec2 qp = seg.a - from;
-        if (cross(qp, r) != 0.0f) return {};
-        const float rr = dot(r, r);
-        if (rr == 0.0f) return qp == Vec2{} ? starts_inside(from) : CastHit{};
-        const float t = dot(qp, r) / rr;
-        if (!(t >= 0.0f && t <= 1.0f)) return {};
-        if (t == 0.0f) return starts_inside(from);
-        const float len = std::sqrt(rr);
-        return hit_at(from, r, t, Vec2{-r.x / len, -r.y / len});
-    }
-    return detail::cast_segment(from, to, seg.a, seg.b);
+    if (!valid_motion(from, to - from) || !valid(seg)) return {};
+    return cast_wall(from, to, seg.a, seg.b);
 }
 
 CastHit cast(Vec2 from, Vec2 to, const PlacedMask& m) {
-    // Set pixels are closed unit squares. The rows the segment crosses are visited in the
-    // order it crosses them; within the first row band that holds a hit, the earliest of the
-    // set squares the segment touches there wins (a later band cannot hold an earlier t).
-    if (!finite(from) || !finite(to) || !m.mask || m.mask->width() == 0 || m.mask->height() == 0) return {};
+    // Set pixels are closed unit squares; the answer is the earliest of their slab hits.
+    // Row bands are visited in the order the segment reaches them, and the search stops at a
+    // band the segment reaches only after the best hit so far. Row and column ranges are
+    // widened by one so that a square touched only at its edge or corner is still tried.
+    if (!valid_motion(from, to - from) || !m.mask || m.mask->width() == 0 || m.mask->height() == 0) return {};
     const Mask& mask = *m.mask;
-    const Aabb box = bounds(m);
-    const CastHit clip = cast_box(from, to, box.min, box.max);
-    if (!clip.hit) return {};
     const Vec2 d = to - from;
-    // The part of the segment inside the mask's rectangle: [t0, t1].
-    float t1 = 1.0f;
-    if (d.x != 0.0f) t1 = std::fmin(t1, std::fmax((box.min.x - from.x) / d.x, (box.max.x - from.x) / d.x));
-    if (d.y != 0.0f) t1 = std::fmin(t1, std::fmax((box.min.y - from.y) / d.y, (box.max.y - from.y) / d.y));
-    const float t0 = clip.t;
-    const float y_a = from.y + t0 * d.y - static_cast<float>(m.y);
-    const float y_b = from.y + t1 * d.y - static_cast<float>(m.y);
-    const float y_lo = std::fmin(y_a, y_b), y_hi = std::fmax(y_a, y_b);
-    // Rows whose closed band [j, j+1] meets [y_lo, y_hi].
-    int j_first = index_of(std::ceil(y_lo)) - 1;
-    int j_last = index_of(std::floor(y_hi));
-    j_first = j_first < 0 ? 0 : j_first;
-    j_last = j_last > mask.height() - 1 ? mask.height() - 1 : j_last;
+    const Aabb box = bounds(m);
+    const Slab clip = slab(from, d, box.min, box.max);
+    if (!clip.hit) return {};
+    const Vec2 origin{static_cast<float>(m.x), static_cast<float>(m.y)};
+    const float y_a = from.y + clip.t_enter * d.y - origin.y;
+    const float y_b = from.y + clip.t_exit * d.y - origin.y;
+    const int j_lo = std::max(detail::pixel_index(std::floor(std::fmin(y_a, y_b))) - 1, 0);
+    const int j_hi = std::min(detail::pixel_index(std::floor(std::fmax(y_a, y_b))) + 1, mask.height() - 1);
     const bool down = d.y >= 0.0f;
-    const int step = down ? 1 : -1;
-    const int j_begin = down ? j_first : j_last;
-    const int j_end = down ? j_last + 1 : j_first - 1;
-    for (int j = j_begin; j != j_end; j += step) {
-        // The segment's part in this band: the x range it covers there.
-        float ta = t0, tb = t1;
+    CastHit best{};
+    for (int k = 0; k <= j_hi - j_lo; ++k) {
+        const int j = down ? j_lo + k : j_hi - k;
+        const float band_lo = origin.y + static_cast<float>(j);
+        // The part of the segment in this band's closed rows [band_lo, band_lo + 1].
+        float ta = clip.t_enter, tb = clip.t_exit;
         if (d.y != 0.0f) {
-            const float band_lo = static_cast<float>(m.y + j), band_hi = band_lo + 1.0f;
-            float u0 = (band_lo - from.y) / d.y, u1 = (band_hi - from.y) / d.y;
-            if (u0 > u1) { const float tmp = u0; u0 = u1; u1 = tmp; }
+            float u0 = (band_lo - from.y) / d.y, u1 = (band_lo + 1.0f - from.y) / d.y;
+            if (u0 > u1) std::swap(u0, u1);
             ta = std::fmax(ta, u0);
             tb = std::fmin(tb, u1);
-            if (ta > tb) continue;
         }
-        const float xa = from.x + ta * d.x - static_cast<float>(m.x);
-        const float xb = from.x + tb * d.x - static_cast<float>(m.x);
-        int i_first = index_of(std::ceil(std::fmin(xa, xb))) - 1;
-        int i_last = index_of(std::floor(std::fmax(xa, xb)));
-        i_first = i_first < 0 ? 0 : i_first;
-        i_last = i_last > mask.width() - 1 ? mask.width() - 1 : i_last;
-        CastHit best{};
-        for (int i = i_first; i <= i_last; ++i) {
+        if (best.hit && ta > best.t) break;  // later bands are reached later still
+        if (ta > tb) continue;
+        const float x_a = from.x + ta * d.x - origin.x;
+        const float x_b = from.x + tb * d.x - origin.x;
+        const int i_lo = std::max(detail::pixel_index(std::floor(std::fmin(x_a, x_b))) - 1, 0);
+        const int i_hi = std::min(detail::pixel_index(std::floor(std::fmax(x_a, x_b))) + 1, mask.width() - 1);
+        for (int i = i_lo; i <= i_hi; ++i) {
             if (!mask.get(i, j)) continue;
-            const Vec2 lo{static_cast<float>(m.x + i), static_cast<float>(m.y + j)};
+            const Vec2 lo = origin + Vec2{static_cast<float>(i), static_cast<float>(j)};
             const CastHit h = cast_box(from, to, lo, lo + Vec2{1.0f, 1.0f});
             if (h.hit && (!best.hit || h.t < best.t)) best = h;
         }
-        if (best.hit) {
-            if (best.t == 0.0f) best.normal = {};  // started on a set pixel
-            return best;
-        }
     }
-    return {};
+    if (best.hit && best.t == 0.0f) best.normal = {};  // started on a set pixel
+    return best;
 }
 
 CastHit cast(Vec2 from, Vec2 to, const Shape& s) {

@@ -9,17 +9,6 @@ using detail::flipped;
 
 namespace {
 
-// Pairs without a typed function of their own: boxes become polygons for SAT.
-Manifold collide_any(const Aabb& a, const Polygon& b) { return collide(to_polygon(a), b); }
-// An OBB's corners are exact only relative to its centre, so the pair is solved there.
-Manifold collide_any(const Obb& a, const Polygon& b) {
-    return collide(detail::centred_polygon(a), detail::translated(b, -a.center));
-}
-Manifold collide_any(const Aabb& a, const Segment& b) { return collide(to_polygon(a), b); }
-Manifold collide_any(const Obb& a, const Segment& b) {
-    return collide(detail::centred_polygon(a), Segment{b.a - a.center, b.b - a.center});
-}
-
 // Every unordered pair once, in the pair table's row order (A's kind <= B's kind).
 Manifold ordered(const Shape& a, const Shape& b) {
     const ShapeKind ka = kind_of(a), kb = kind_of(b);
@@ -30,9 +19,9 @@ Manifold ordered(const Shape& a, const Shape& b) {
             switch (kb) {
                 case K::aabb: return collide(x, std::get<Aabb>(b));
                 case K::obb: return collide(x, std::get<Obb>(b));
-                case K::polygon: return collide_any(x, std::get<Polygon>(b));
+                case K::polygon: return collide(x, std::get<Polygon>(b));
                 case K::circle: return collide(x, std::get<Circle>(b));
-                case K::segment: return collide_any(x, std::get<Segment>(b));
+                case K::segment: return collide(x, std::get<Segment>(b));
                 case K::mask: return flipped(collide(std::get<PlacedMask>(b), x));
             }
             break;
@@ -41,9 +30,9 @@ Manifold ordered(const Shape& a, const Shape& b) {
             const Obb& x = std::get<Obb>(a);
             switch (kb) {
                 case K::obb: return collide(x, std::get<Obb>(b));
-                case K::polygon: return collide_any(x, std::get<Polygon>(b));
+                case K::polygon: return collide(x, std::get<Polygon>(b));
                 case K::circle: return collide(x, std::get<Circle>(b));
-                case K::segment: return collide_any(x, std::get<Segment>(b));
+                case K::segment: return collide(x, std::get<Segment>(b));
                 case K::mask: return flipped(collide(std::get<PlacedMask>(b), x));
                 default: break;
             }

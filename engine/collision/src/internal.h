@@ -1,5 +1,6 @@
 // Helpers shared by the collision module's implementation files (not part of the API):
-// finiteness checks, result builders, and the convex "point set + axes" view used by SAT.
+// input validity, result builders, the one point-vs-circle contact solver, segment
+// parameters, and the convex "point set + axes" view used by SAT.
 #pragma once
 
 #include <cmath>
@@ -10,15 +11,21 @@ namespace jostle::detail {
 
 inline bool finite(float v) { return std::isfinite(v); }
 inline bool finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
-inline bool finite(const Aabb& b) { return finite(b.min) && finite(b.max); }
-inline bool finite(const Obb& b) { return finite(b.center) && finite(b.half) && finite(b.angle); }
-inline bool finite(const Circle& c) { return finite(c.center) && finite(c.radius); }
-inline bool finite(const Segment& s) { return finite(s.a) && finite(s.b); }
-inline bool finite(const Polygon& p) {
+
+// A shape every query accepts: finite, and well formed (min <= max, half >= 0, r >= 0,
+// 3..16 vertices). Anything else is a miss.
+inline bool valid(const Aabb& b) { return finite(b.min) && finite(b.max) && b.min.x <= b.max.x && b.min.y <= b.max.y; }
+inline bool valid(const Obb& b) { return finite(b.center) && finite(b.half) && finite(b.angle) && b.half.x >= 0.0f && b.half.y >= 0.0f; }
+inline bool valid(const Circle& c) { return finite(c.center) && finite(c.radius) && c.radius >= 0.0f; }
+inline bool valid(const Segment& s) { return finite(s.a) && finite(s.b); }
+inline bool valid(const Polygon& p) {
+    if (p.count < 3 || p.count > kMaxPolygonVertices) return false;
     for (int i = 0; i < p.count; ++i)
-        if (!finite(p.points[i])) return false;
-    return p.count >= 3;
+        if (!finite(p.points[i]) || !finite(p.normals[i])) return false;
+    return true;
 }
+// A motion from `from` by `d` whose end is finite too (a sum can overflow to infinity).
+inline bool valid_motion(Vec2 from, Vec2 d) { return finite(from) && finite(d) && finite(from + d); }
 
 // A hit with the given depth and A->B normal; depth is clamped at 0 against rounding.
 inline Manifold hit_with(float depth, Vec2 normal) {
@@ -33,42 +40,81 @@ inline Manifold flipped(Manifold m) {
 
 inline float clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
-// p minus the closest point of segment a-b to p (09-85), formed from differences so that it
-// keeps the precision of the distance even far from the origin.
-inline Vec2 offset_from_segment(Vec2 a, Vec2 b, Vec2 p) {
+// SAT bookkeeping for one axis u (09-60): push_pos moves A by -push_pos*u (normal u),
+// push_neg moves A by +push_neg*u (normal -u). Taking the smaller push, rather than the
+// overlap length, is what makes containment come out right. Returns false on a gap (or
+// NaN): the early exit of 09-50.
+inline bool consider_axis(Vec2 u, float push_pos, float push_neg, float& best, Vec2& best_normal) {
+    if (!(push_pos >= 0.0f && push_neg >= 0.0f)) return false;
+    if (push_pos <= push_neg) {
+        if (push_pos < best) { best = push_pos; best_normal = u; }
+    } else if (push_neg < best) {
+        best = push_neg;
+        best_normal = -u;
+    }
+    return true;
+}
+
+// The parameter in [0, 1] of the point of segment a + s*(b - a) closest to p (09-85).
+inline float segment_param(Vec2 a, Vec2 b, Vec2 p) {
     const Vec2 d = b - a;
-    const Vec2 f = p - a;
     const float dd = dot(d, d);
-    if (!(dd > 0.0f)) return f;
-    const float t = clamp(dot(f, d) / dd, 0.0f, 1.0f);
-    return f - t * d;
+    if (!(dd > 0.0f)) return 0.0f;
+    return clamp(dot(p - a, d) / dd, 0.0f, 1.0f);
 }
 
-// The polygon moved by `offset` (normals unchanged). Used to work near the origin: an OBB's
+// p minus the closest point of segment a-b to p, formed from differences so that it keeps
+// the precision of the distance even far from the origin.
+inline Vec2 offset_from_segment(Vec2 a, Vec2 b, Vec2 p) { return (p - a) - segment_param(a, b, p) * (b - a); }
+
+// p minus the closest point of the polygon's boundary (09-90: the nearest of the closest
+// points on every edge), and the edge it lies on.
+inline Vec2 offset_from_boundary(const Polygon& poly, Vec2 p, int* edge) {
+    Vec2 best{};
+    float best_d2 = INFINITY;
+    for (int i = 0; i < poly.count; ++i) {
+        const Vec2 rel = offset_from_segment(poly.points[i], poly.points[(i + 1) % poly.count], p);
+        const float d2 = dot(rel, rel);
+        if (d2 < best_d2) { best_d2 = d2; best = rel; *edge = i; }
+    }
+    return best;
+}
+
+// The lecture's D/F/G closed form (09-111 to 09-122), the one solver for "a point moving by
+// v first comes within `radius` of a centre": used by circle-circle sweeps (radius r1 + r2)
+// and by casts against circles and rounded corners. `offset` is the centre minus the
+// point's start. On a hit, t in [0, 1] and `outward` is the unit vector from the centre to
+// the point at contact. Only called with the point outside the circle at t = 0.
+struct CircleContact {
+    bool hit = false;
+    float t = 0.0f;
+    Vec2 outward;
+};
+CircleContact first_contact_with_circle(Vec2 offset, Vec2 v, float radius);
+
+// The contact of a point cast from `from` to `to` against a circle: t = 0 if it starts in it.
+CastHit cast_circle(Vec2 from, Vec2 to, Vec2 center, float radius);
+
+// Shapes relative to a point: used to work near the origin, where floats are dense. An OBB's
 // corners far from the origin are not floats, but relative to its centre they are precise.
-inline Polygon translated(const Polygon& p, Vec2 offset) {
-    Polygon out = p;
-    for (int i = 0; i < p.count; ++i) out.points[i] = p.points[i] + offset;
-    return out;
-}
+Polygon centred_polygon(const Obb& box);  // the OBB's polygon with its centre at the origin
 
-// The OBB's polygon with its centre at the origin.
-inline Polygon centred_polygon(const Obb& box) { return to_polygon(Obb{{}, box.half, box.angle}); }
-
-// A convex point set for SAT: its vertices and the candidate separating axes it brings
-// (unit edge normals; a segment also brings its direction, since it has no area).
+// A convex point set for SAT: its vertices (each plus `offset`) and the candidate
+// separating axes it brings (unit edge normals; a segment also brings its direction, since
+// it has no area).
 struct ConvexView {
     const Vec2* points = nullptr;
     int count = 0;
     const Vec2* axes = nullptr;
     int axis_count = 0;
+    Vec2 offset;
 };
 
 // SAT over the axes of both views (09-62): early exit on a separating axis, MTD along the
 // axis of least push. Axes need not be unique or oriented.
 Manifold sat_collide(const ConvexView& a, const ConvexView& b);
 
-// Segment as a ConvexView: storage for its axes lives in the caller's SegmentAxes.
+// Segment as a ConvexView: storage for its axes lives in the SegmentAxes.
 struct SegmentAxes {
     Vec2 points[2];
     Vec2 axes[2];
@@ -76,9 +122,14 @@ struct SegmentAxes {
 };
 SegmentAxes segment_axes(const Segment& s);
 
-// Cast of a point moving from -> to against a circle (the quadratic); used by sweeps too.
-CastHit cast_circle(Vec2 from, Vec2 to, Vec2 center, float radius);
-// Cast against a segment as a zero-thickness wall: t, point, and the normal facing `from`.
-CastHit cast_segment(Vec2 from, Vec2 to, Vec2 a, Vec2 b);
+// The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in").
+Manifold box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r);
+
+// floor/ceil results as pixel indices, clamped first so that a far-off float or NaN never
+// reaches an int conversion.
+inline int pixel_index(float v) {
+    if (!(v == v)) return 0;
+    return static_cast<int>(clamp(v, -2.0f, 2.0f * static_cast<float>(kMaxMaskSide)));
+}
 
 }  // namespace jostle::detail

@@ -8,6 +8,7 @@
 namespace jostle {
 
 using detail::finite;
+using detail::valid;
 
 Line line_through(Vec2 p1, Vec2 p2) {
     // 09-77
@@ -36,7 +37,7 @@ SegmentIntersection intersect(const Segment& s1, const Segment& s2) {
     // The same test is done here on the crossing's parameters along each segment, computed
     // from cross products: equal in exact arithmetic, but an endpoint that touches the other
     // segment gives a parameter of exactly 0 or 1 instead of a rounded coordinate.
-    if (!finite(s1) || !finite(s2)) return {};
+    if (!valid(s1) || !valid(s2)) return {};
     const Vec2 r = s1.b - s1.a;
     const Vec2 s = s2.b - s2.a;
     const Vec2 qp = s2.a - s1.a;
@@ -80,12 +81,8 @@ Vec2 closest_point(const Line& line, Vec2 p) {
 Vec2 closest_point(const Segment& seg, Vec2 p) {
     // 09-85: the closest point on the line if it lies in the segment, else the nearer
     // endpoint; as a clamped parameter along the segment, which is the same thing.
-    const Vec2 d = seg.b - seg.a;
-    const float dd = dot(d, d);
-    if (!(dd > 0.0f)) return seg.a;
-    const float t = detail::clamp(dot(p - seg.a, d) / dd, 0.0f, 1.0f);
-    if (t == 1.0f) return seg.b;
-    return seg.a + t * d;
+    const float t = detail::segment_param(seg.a, seg.b, p);
+    return t == 1.0f ? seg.b : seg.a + t * (seg.b - seg.a);
 }
 
 Vec2 closest_point_on(const Circle& c, Vec2 q) {
@@ -108,12 +105,12 @@ ClosestPoint closest_in_box(Vec2 lo, Vec2 hi, Vec2 q) {
 }  // namespace
 
 ClosestPoint closest_point(const Aabb& box, Vec2 q) {
-    if (!finite(box) || !finite(q)) return kNoClosestPoint;
+    if (!valid(box) || !finite(q)) return kNoClosestPoint;
     return closest_in_box(box.min, box.max, q);
 }
 
 ClosestPoint closest_point(const Obb& box, Vec2 q) {
-    if (!finite(box) || !finite(q)) return kNoClosestPoint;
+    if (!valid(box) || !finite(q)) return kNoClosestPoint;
     const Rot r = Rot::from_angle(box.angle);
     const ClosestPoint local = closest_in_box(-box.half, box.half, inv_rotate(r, q - box.center));
     if (local.distance == 0.0f) return {q, 0.0f};
@@ -121,6 +118,7 @@ ClosestPoint closest_point(const Obb& box, Vec2 q) {
 }
 
 bool contains(const Polygon& poly, Vec2 q) {
+    if (!detail::valid(poly)) return false;
     for (int i = 0; i < poly.count; ++i)
         if (!(dot(poly.normals[i], q - poly.points[i]) <= 0.0f)) return false;
     return poly.count >= 3;
@@ -128,27 +126,22 @@ bool contains(const Polygon& poly, Vec2 q) {
 
 Vec2 closest_point_on_boundary(const Polygon& poly, Vec2 q, int* edge) {
     // 09-90: the nearest of the closest points on every edge.
-    Vec2 best = poly.points[0];
-    float best_d2 = INFINITY;
-    int best_edge = 0;
-    for (int i = 0; i < poly.count; ++i) {
-        const Vec2 p = closest_point(Segment{poly.points[i], poly.points[(i + 1) % poly.count]}, q);
-        const float d2 = length_squared(q - p);
-        if (d2 < best_d2) { best_d2 = d2; best = p; best_edge = i; }
-    }
-    if (edge) *edge = best_edge;
-    return best;
+    int nearest = 0;
+    const Vec2 offset = detail::offset_from_boundary(poly, q, &nearest);
+    if (edge) *edge = nearest;
+    return q - offset;
 }
 
 ClosestPoint closest_point(const Polygon& poly, Vec2 q) {
-    if (!finite(poly) || !finite(q)) return kNoClosestPoint;
+    if (!valid(poly) || !finite(q)) return kNoClosestPoint;
     if (contains(poly, q)) return {q, 0.0f};
-    const Vec2 p = closest_point_on_boundary(poly, q);
-    return {p, length(q - p)};
+    int edge = 0;
+    const Vec2 offset = detail::offset_from_boundary(poly, q, &edge);
+    return {q - offset, length(offset)};
 }
 
 ClosestPoint closest_point(const Circle& c, Vec2 q) {
-    if (!finite(c) || !finite(q)) return kNoClosestPoint;
+    if (!valid(c) || !finite(q)) return kNoClosestPoint;
     if (length_squared(q - c.center) <= c.radius * c.radius) return {q, 0.0f};
     const Vec2 p = closest_point_on(c, q);
     return {p, length(q - p)};
@@ -159,9 +152,8 @@ ClosestPoint closest_point(const Shape& s, Vec2 q) {
         [&](const auto& shape) -> ClosestPoint {
             using T = std::decay_t<decltype(shape)>;
             if constexpr (std::is_same_v<T, Segment>) {
-                if (!finite(shape) || !finite(q)) return kNoClosestPoint;
-                const Vec2 p = closest_point(shape, q);
-                return {p, length(q - p)};
+                if (!valid(shape) || !finite(q)) return kNoClosestPoint;
+                return {closest_point(shape, q), length(detail::offset_from_segment(shape.a, shape.b, q))};
             } else {
                 return closest_point(shape, q);
             }

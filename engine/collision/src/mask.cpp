@@ -901,11 +901,11 @@ std::optional<Pixel> first_overlap(const PlacedMask& a, const Shape& b) {
 }
 
 // The nearest point of any set pixel's closed square. An empty or missing mask, or a
-// non-finite q, has no nearest point: the answer is point = q, distance = +infinity.
+// non-finite q, has no nearest point: the answer is point {0, 0}, distance = +infinity.
 // Rows are visited outward from q's row and stop once a row is farther than the best; in a
 // row only the set pixels just left and right of q's column can be nearest.
 ClosestPoint closest_point(const PlacedMask& m, Vec2 q) {
-    const ClosestPoint none{q, std::numeric_limits<float>::infinity()};
+    const ClosestPoint none{{0.0f, 0.0f}, std::numeric_limits<float>::infinity()};  // as for every shape
     if (!usable(m.mask) || !is_finite(q)) return none;
     const Mask& mask = *m.mask;
     const double qx = q.x;

@@ -8,6 +8,7 @@
 namespace jostle {
 
 using detail::finite;
+using detail::valid;
 
 std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* error) {
     auto fail = [&](std::string why) -> std::optional<Polygon> {
@@ -63,13 +64,16 @@ std::array<Vec2, 4> corners(const Aabb& box) {
     return {box.min, Vec2{box.max.x, box.min.y}, box.max, Vec2{box.min.x, box.max.y}};
 }
 
-std::array<Vec2, 4> corners(const Obb& box) {
-    const Rot q = Rot::from_angle(box.angle);
-    const Vec2 ux = rotate(q, Vec2{box.half.x, 0.0f});
-    const Vec2 uy = rotate(q, Vec2{0.0f, box.half.y});
+namespace {
+std::array<Vec2, 4> box_corners(Vec2 center, Vec2 half, Rot q) {
+    const Vec2 ux = rotate(q, Vec2{half.x, 0.0f});
+    const Vec2 uy = rotate(q, Vec2{0.0f, half.y});
     // -x-y, +x-y, +x+y, -x+y: positive turns, like the AABB corners.
-    return {box.center - ux - uy, box.center + ux - uy, box.center + ux + uy, box.center - ux + uy};
+    return {center - ux - uy, center + ux - uy, center + ux + uy, center - ux + uy};
 }
+}  // namespace
+
+std::array<Vec2, 4> corners(const Obb& box) { return box_corners(box.center, box.half, Rot::from_angle(box.angle)); }
 
 namespace {
 // A polygon from 4 box corners (possibly degenerate: zero-size boxes are allowed as shapes,
@@ -86,7 +90,15 @@ Polygon box_polygon(const std::array<Vec2, 4>& c, Rot q) {
 }
 }  // namespace
 
-Polygon to_polygon(const Obb& box) { return box_polygon(corners(box), Rot::from_angle(box.angle)); }
+Polygon to_polygon(const Obb& box) {
+    const Rot q = Rot::from_angle(box.angle);
+    return box_polygon(box_corners(box.center, box.half, q), q);
+}
+
+Polygon detail::centred_polygon(const Obb& box) {
+    const Rot q = Rot::from_angle(box.angle);
+    return box_polygon(box_corners({}, box.half, q), q);
+}
 Polygon to_polygon(const Aabb& box) { return box_polygon(corners(box), Rot{}); }
 
 namespace {

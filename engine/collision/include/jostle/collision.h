@@ -254,7 +254,11 @@ Polygon to_polygon(const Aabb& box);
 
 Manifold collide(const Obb& a, const Obb& b);
 Manifold collide(const Aabb& a, const Obb& b);
+Manifold collide(const Aabb& a, const Polygon& b);
+Manifold collide(const Obb& a, const Polygon& b);
 Manifold collide(const Polygon& a, const Polygon& b);
+Manifold collide(const Aabb& a, const Segment& b);
+Manifold collide(const Obb& a, const Segment& b);
 Manifold collide(const Polygon& a, const Segment& b);
 Manifold collide(const Segment& a, const Segment& b);
 
