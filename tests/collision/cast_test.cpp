@@ -12,18 +12,8 @@ namespace {
 using test::is_miss;
 using test::kPi;
 using test::kSqrt2;
+using test::is_cast;
 
-::testing::AssertionResult is_cast(const CastHit& h, float t, Vec2 point, Vec2 normal, float tol = 1e-5f,
-                                   float point_tol = 1e-4f) {
-    if (h.hit && std::fabs(h.t - t) <= tol && test::vec_near(h.point, point, point_tol) &&
-        test::vec_near(h.normal, normal, tol)) {
-        return ::testing::AssertionSuccess();
-    }
-    return ::testing::AssertionFailure() << "expected t " << t << " point (" << point.x << ", " << point.y
-                                         << ") normal (" << normal.x << ", " << normal.y << "), got hit=" << h.hit
-                                         << " t=" << h.t << " point=(" << h.point.x << ", " << h.point.y
-                                         << ") normal=(" << h.normal.x << ", " << h.normal.y << ")";
-}
 
 const Circle kCircle{{0, 0}, 2};
 const Aabb kBox{{0, 0}, {2, 2}};

@@ -117,6 +117,27 @@ inline Shape moved(const Shape& s, Vec2 d) {
     return std::visit([&](const auto& x) -> Shape { return moved(x, d); }, s);
 }
 
+// A cast or sweep result with the given t, point and normal (both have hit, t, point, normal).
+template <class Contact>
+::testing::AssertionResult is_contact(const Contact& h, float t, Vec2 point, Vec2 normal, float tol = 1e-5f,
+                                      float point_tol = 1e-4f) {
+    if (h.hit && std::fabs(h.t - t) <= tol && vec_near(h.point, point, point_tol) && vec_near(h.normal, normal, tol)) {
+        return ::testing::AssertionSuccess();
+    }
+    return ::testing::AssertionFailure() << "expected t " << t << " point (" << point.x << ", " << point.y
+                                         << ") normal (" << normal.x << ", " << normal.y << "), got hit=" << h.hit
+                                         << " t=" << h.t << " point=(" << h.point.x << ", " << h.point.y
+                                         << ") normal=(" << h.normal.x << ", " << h.normal.y << ")";
+}
+inline ::testing::AssertionResult is_cast(const CastHit& h, float t, Vec2 point, Vec2 normal, float tol = 1e-5f,
+                                          float point_tol = 1e-4f) {
+    return is_contact(h, t, point, normal, tol, point_tol);
+}
+inline ::testing::AssertionResult is_sweep(const SweepHit& h, float t, Vec2 point, Vec2 normal, float tol = 1e-5f,
+                                           float point_tol = 1e-4f) {
+    return is_contact(h, t, point, normal, tol, point_tol);
+}
+
 // ---------------------------------------------------------------------------------------
 // Independent double-precision oracle (non-mask shapes)
 // ---------------------------------------------------------------------------------------
