@@ -6,8 +6,9 @@
 //
 // COORDINATES
 //   Pixels, y pointing down (as in images). Angles in radians, positive from +x toward +y
-//   (clockwise on screen). Floats throughout (as in Box2D); no function reads global state,
-//   allocates, or depends on anything but its arguments, so results are reproducible.
+//   (clockwise on screen). Floats throughout (as in Box2D); no query reads global state,
+//   allocates, or depends on anything but its arguments, so results are reproducible (only
+//   building a Mask allocates).
 //
 // SHAPES (all closed: a shape contains its boundary)
 //   Aabb        {min, max}                   axis-aligned box, min <= max on both axes
@@ -37,9 +38,14 @@
 //             starts on any set pixel).
 //   SweepHit  {hit, t, point, normal}: a circle moving by va and a shape moving by vb over one
 //             frame first touch at time t in [0, 1]; point is the contact point at that time,
-//             normal points from A (the circle) toward B. Overlap at t = 0 reports t = 0.
+//             normal points from A (the circle) toward B. Shapes already touching or
+//             overlapping at t = 0 report t = 0 only while A moves into B (dot(va - vb,
+//             normal) > 0); moving off or along B is no hit (the lecture's moving-away early
+//             out, 09-114), so a ball left touching a wall by the MTD push can leave it.
 //
-// PAIR TABLE: how collide(A, B) is computed (the reverse order swaps and flips the normal)
+// PAIR TABLE: how collide(A, B) is computed (the reverse order swaps and flips the normal;
+// for two shapes of the same kind whose pushes tie, the first tied axis of A wins, so the
+// reverse order may name the other tied axis)
 //              Aabb         Obb         Polygon     Circle          Segment     Mask
 //   Aabb       per-axis     SAT box     SAT         clamp 09-102    SAT         mask
 //   Obb                     SAT box     SAT         local clamp     SAT         mask
@@ -64,10 +70,12 @@
 //             another mask's pixel at the same world pixel. hit = some set pixel meets B;
 //             the MTD is the shortest integer translation of the mask that leaves no set
 //             pixel meeting B (ties broken toward pushing A away from B's centre). Mask pairs
-//             have no "touching" case: a hit always has depth >= 1.
+//             have no "touching" case: a hit always has depth >= 1. "B's centre" for the tie
+//             rule: a mask's pixel rectangle's centre, a box's or circle's centre, a
+//             polygon's vertex mean, a segment's midpoint.
 //
 // MASKS
-//   Mask::from_rows({"..##", ".###"})      '#' set, '.' clear
+//   Mask::from_rows({"..##", ".###"})      '#' set, '.' clear (no rows: a 0 x 0 mask)
 //   Mask::from_alpha(rgba, w, h, t)        set where alpha > t
 //   Queries (mask.cpp): overlaps, first_overlap (the first shared world pixel in reading
 //   order: smallest y, then smallest x), count_overlap, collide (integer MTD), the same
@@ -82,7 +90,9 @@
 //   (zero length, zero radius, coincident centres, parallel edges) has a defined result:
 //   coincident circle centres use normal {1, 0}. Any NaN or infinite coordinate in a shape
 //   makes it hit nothing (a miss, all zeros), never undefined behaviour; closest_point then
-//   answers point {0, 0} at distance +infinity.
+//   answers point {0, 0} at distance +infinity. So does a malformed shape (Aabb min > max,
+//   negative half extents or radius, a Polygon not made by make_polygon with 3..16 vertices),
+//   and a cast or motion whose end overflows to infinity.
 //
 // LIMITS
 //   Polygon: 3..16 vertices (kMaxPolygonVertices). Mask: up to 4096 x 4096 pixels
