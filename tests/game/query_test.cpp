@@ -1,6 +1,6 @@
 // query_test.cpp: `jostle query` in process (run_query_line and run_query: every op, every
 // shape type, the number format, each error message) and end to end (the built jostle binary
-// with stdin from tests/game/data, checking every output line and the exit status).
+// with stdin from tests/data, checking every output line and the exit status).
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>

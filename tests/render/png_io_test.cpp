@@ -1,4 +1,4 @@
-// png_io_test.cpp: read_png on every colour type in tests/game/data (made by make_pngs.py)
+// png_io_test.cpp: read_png on every colour type in tests/data (made by make_pngs.py)
 // and on broken files, and write_png_atomic: round trips, overwrites, no temporary files
 // left behind, errors naming the path.
 #include <algorithm>

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # make_pngs.py: writes the small PNG files the game tests read (query masks, png_io cases),
 # with nothing but the standard library (zlib, struct). The PNGs are committed; run this
-# from any folder only to regenerate them: python3 tests/game/data/make_pngs.py
+# from any folder only to regenerate them: python3 tests/data/make_pngs.py
 import os
 import struct
 import zlib
