@@ -17,8 +17,8 @@ using detail::valid_motion;
 
 namespace {
 
-CastHit hit_at(Vec2 from, Vec2 d, float t, Vec2 normal) { return {true, t, from + t * d, normal}; }
-CastHit starts_inside(Vec2 from, Vec2 normal = {}) { return {true, 0.0f, from, normal}; }
+CastHit hit_at(Vec2 from, Vec2 d, float t, Vec2 normal) { return {true, t, from + t * d, detail::plain_zeros(normal)}; }
+CastHit starts_inside(Vec2 from, Vec2 normal = {}) { return {true, 0.0f, from, detail::plain_zeros(normal)}; }
 
 // The segment from + t d, t in [0, 1], against the closed box [lo, hi]: the times it enters
 // and leaves, and the normal of the face it enters by. A start on the boundary gets that
@@ -137,7 +137,7 @@ CastHit cast(Vec2 from, Vec2 to, const Obb& box) {
     CastHit h = cast_box(inv_rotate(q, from - box.center), inv_rotate(q, to - box.center), -box.half, box.half);
     if (!h.hit) return h;
     h.point = h.t == 0.0f ? from : from + h.t * (to - from);
-    h.normal = rotate(q, h.normal);
+    h.normal = detail::plain_zeros(rotate(q, h.normal));
     return h;
 }
 

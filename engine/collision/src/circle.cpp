@@ -109,7 +109,7 @@ Manifold collide(const Obb& a, const Circle& b) {
     const Rot q = Rot::from_angle(a.angle);
     const Vec2 local = inv_rotate(q, b.center - a.center);
     Manifold m = detail::box_circle(-a.half, a.half, local, b.radius);
-    if (m.hit) m.normal = rotate(q, m.normal);
+    if (m.hit) m.normal = detail::plain_zeros(rotate(q, m.normal));
     return m;
 }
 

@@ -27,14 +27,18 @@ inline bool valid(const Polygon& p) {
 // A motion from `from` by `d` whose end is finite too (a sum can overflow to infinity).
 inline bool valid_motion(Vec2 from, Vec2 d) { return finite(from) && finite(d) && finite(from + d); }
 
+// -0 becomes +0 (x + 0 is x for every other x): results print and hash the same whichever
+// way a zero component was reached.
+inline Vec2 plain_zeros(Vec2 v) { return {v.x + 0.0f, v.y + 0.0f}; }
+
 // A hit with the given depth and A->B normal; depth is clamped at 0 against rounding.
 inline Manifold hit_with(float depth, Vec2 normal) {
-    return Manifold{true, depth > 0.0f ? depth : 0.0f, normal};
+    return Manifold{true, depth > 0.0f ? depth : 0.0f, plain_zeros(normal)};
 }
 
 // The same contact seen from B: the normal flips, the depth stays.
 inline Manifold flipped(Manifold m) {
-    if (m.hit) m.normal = -m.normal;
+    if (m.hit) m.normal = plain_zeros(-m.normal);
     return m;
 }
 

@@ -39,7 +39,9 @@ namespace {
 
 // The sweep answer once the circle (centre c, radius r, velocity v) touches at time t with
 // unit normal n (from the circle toward the other shape).
-SweepHit contact_at(Vec2 c, Vec2 v, float r, float t, Vec2 n) { return {true, t, c + t * v + r * n, n}; }
+SweepHit contact_at(Vec2 c, Vec2 v, float r, float t, Vec2 n) {
+    return {true, t, c + t * v + r * n, detail::plain_zeros(n)};
+}
 
 // Shapes already touching or overlapping at t = 0: a contact at t = 0 only while A moves
 // into B (09-114's moving-away early out applies here too). A ball resting against a wall
@@ -49,7 +51,7 @@ SweepHit contact_at_start(const Circle& moving, Vec2 v, const Manifold& shape_vs
     const Vec2 n = -shape_vs_circle.normal;
     if (!(dot(v, n) > 0.0f)) return {};
     // The contact point: where the circle's surface meets the shape along the normal.
-    return {true, 0.0f, moving.center + (moving.radius - shape_vs_circle.depth) * n, n};
+    return {true, 0.0f, moving.center + (moving.radius - shape_vs_circle.depth) * n, detail::plain_zeros(n)};
 }
 
 // First contact of a circle moving by v with the convex shape given by its vertices and

@@ -210,7 +210,7 @@ struct Manifold {
     bool hit = false;
     float depth = 0.0f;  // >= 0
     Vec2 normal;         // unit, from A toward B; {0, 0} on a miss
-    Vec2 mtd() const { return -depth * normal; }  // moves A out of B
+    Vec2 mtd() const { return {0.0f - depth * normal.x, 0.0f - depth * normal.y}; }  // moves A out of B (never -0)
 };
 
 struct CastHit {
