@@ -185,3 +185,21 @@ TEST(Regression, SweepTouchingWithinRoundingDoesNotPassThrough) {
     ASSERT_TRUE(h.hit);
     EXPECT_LT(h.t, 0.02f);
 }
+
+TEST(Regression, ResultsCarryNoNegativeZero) {
+    // Flipping (-1, 0) gave (1, -0): equal as numbers, but printed as -0 and hashed as other
+    // bytes than a +0 reached another way.
+    const Circle ball{{0, 0}, 1};
+    const Aabb wall{{0.5f, -1}, {3, 1}};
+    const Manifold m = collide(Shape{ball}, Shape{wall});
+    ASSERT_TRUE(m.hit);
+    EXPECT_EQ(m.normal, (Vec2{1, 0}));
+    EXPECT_FALSE(std::signbit(m.normal.y));
+    EXPECT_FALSE(std::signbit(m.mtd().y));
+    const SweepHit s = sweep(Circle{{-10, 0}, 1}, {40, 0}, Shape{wall}, {0, 0});
+    ASSERT_TRUE(s.hit);
+    EXPECT_FALSE(std::signbit(s.normal.y));
+    const CastHit c = cast({5, 0}, {-5, 0}, Obb{{0, 0}, {1, 1}, 0});
+    ASSERT_TRUE(c.hit);
+    EXPECT_FALSE(std::signbit(c.normal.y));
+}
