@@ -203,3 +203,108 @@ TEST(Regression, ResultsCarryNoNegativeZero) {
     ASSERT_TRUE(c.hit);
     EXPECT_FALSE(std::signbit(c.normal.y));
 }
+
+TEST(Regression, ZeroSizeBoxSweepsHitOnlyWhatIsThere) {
+    // Zero-length faces passed the window check everywhere, so a point-sized box was hit from
+    // 1.3 px away.
+    EXPECT_FALSE(sweep(Circle{{-2, 0.1f}, 1}, {3, -3}, Aabb{{0, 0}, {0, 0}}).hit);
+    EXPECT_FALSE(sweep(Circle{{-2, 0.1f}, 1}, {3, -3}, Obb{{0, 0}, {0, 0}, 0.3f}).hit);
+    // A zero-width box is its segment.
+    const SweepHit box = sweep(Circle{{0.5f, -2}, 1}, {0.8f, 2}, Aabb{{0, 0}, {0, 10}});
+    const SweepHit seg = sweep(Circle{{0.5f, -2}, 1}, {0.8f, 2}, Segment{{0, 0}, {0, 10}});
+    EXPECT_EQ(box.hit, seg.hit);
+    EXPECT_FALSE(box.hit);
+}
+
+TEST(Regression, PointSweepAgainstASegmentIsItsCast) {
+    // A zero-radius ball against a segment acted on the segment's infinite line.
+    EXPECT_FALSE(cast({-5, 9}, {-14, 1}, Segment{{6, -6}, {-9, 2}}).hit);
+    EXPECT_FALSE(sweep(Circle{{-5, 9}, 0}, {-9, -8}, Segment{{6, -6}, {-9, 2}}).hit);
+    const CastHit c = cast({3, -4}, {20, 6}, Segment{{4, -9}, {3, -2}});
+    const SweepHit s = sweep(Circle{{3, -4}, 0}, {17, 10}, Segment{{4, -9}, {3, -2}});
+    ASSERT_TRUE(c.hit);
+    ASSERT_TRUE(s.hit);
+    EXPECT_NEAR(s.t, c.t, 1e-6f);
+}
+
+TEST(Regression, TinyBallsDoNotTunnel) {
+    // r = 1e-6 is below the rounding of the pushed-out faces; the centre's own entry stops it.
+    const Polygon tri = poly({{5, 10}, {1, 8}, {3, -9}});
+    EXPECT_TRUE(sweep(Circle{{36, 36}, 1e-6f}, {-62, -52}, tri).hit);
+    EXPECT_TRUE(sweep(Circle{{-68, -20}, 1e-6f}, {186, -58}, Segment{{94, 1}, {-81, -60}}).hit);
+}
+
+TEST(Regression, ABallPushedOutByTheMtdCanSlideAway) {
+    // After A.center += mtd, moving along the surface got a t = 0 contact from rounding in the
+    // recomputed normal: the ball was stuck to the wall.
+    Circle ball{{3, -6.5f}, 2};
+    const Obb wall{{0, 0}, {10, 5}, 0.7f};
+    const Manifold m = collide(ball, wall);
+    ASSERT_TRUE(m.hit);
+    ball.center += m.mtd();
+    EXPECT_FALSE(sweep(ball, 10.0f * perp(m.normal), wall).hit);
+    EXPECT_FALSE(sweep(ball, -10.0f * perp(m.normal), wall).hit);
+    // Random walls and balls: pushed out, then moved along the contact's tangent, either way.
+    Rng rng(0x7e6e5503u);
+    for (int i = 0; i < 20000; ++i) {
+        const Obb box{{rng.uniform(-5, 5), rng.uniform(-5, 5)}, {rng.uniform(1, 10), rng.uniform(1, 10)},
+                      rng.uniform(-3.14f, 3.14f)};
+        Circle c{{rng.uniform(-15, 15), rng.uniform(-15, 15)}, rng.uniform(0.5f, 4)};
+        const Manifold hit = collide(c, box);
+        if (!hit.hit || hit.depth > 3) continue;
+        c.center += hit.mtd();
+        const float speed = rng.uniform(1, 20) * (rng.below(2) ? 1.0f : -1.0f);
+        const Vec2 along{-hit.normal.y * speed, hit.normal.x * speed};
+        const SweepHit s = sweep(c, along, box);
+        EXPECT_FALSE(s.hit) << "case " << i << " t " << s.t << " n (" << s.normal.x << ", " << s.normal.y << ") mtd n ("
+                            << hit.normal.x << ", " << hit.normal.y << ") box " << box.center.x << "," << box.center.y
+                            << " " << box.half.x << "," << box.half.y << " " << box.angle << " c " << c.center.x << ","
+                            << c.center.y << " r " << c.radius << " v " << along.x << "," << along.y;
+    }
+}
+
+TEST(Regression, SweepAndCollideAgreeOnTheStartNormal) {
+    // sweep() judged the start with the polygon routine, collide() with the box clamp; on a tie
+    // they picked different normals and so disagreed on "moving into".
+    const Circle ball{{0, 10}, 8};
+    const Aabb box{{-3, 7}, {4, 19}};
+    const Vec2 v{-43, 35};
+    const Manifold m = collide(ball, box);
+    ASSERT_TRUE(m.hit);
+    EXPECT_EQ(sweep(ball, v, box).hit, dot(v, m.normal) > 0.0f);
+}
+
+TEST(Regression, ABallRollsOverMaskPixelSeams) {
+    // Each pixel was swept as its own box, so the corner at every seam of a flat floor stopped
+    // a ball rolling along it.
+    const std::string_view rows[] = {"########"};
+    const Mask floor = *Mask::from_rows(rows);
+    EXPECT_FALSE(sweep(Circle{{2.25f, 8}, 2}, {3, 0}, PlacedMask{&floor, 0, 10}).hit);
+    EXPECT_FALSE(sweep(Circle{{2.25f, 8}, 2}, {3, 0}, Aabb{{0, 10}, {8, 11}}).hit);
+    // Falling onto it is a contact.
+    const SweepHit fall = sweep(Circle{{2.25f, 5}, 2}, {0, 6}, PlacedMask{&floor, 0, 10});
+    ASSERT_TRUE(fall.hit);
+    EXPECT_NEAR(fall.t, 0.5f, 1e-6f);
+    EXPECT_EQ(fall.normal, (Vec2{0, 1}));
+}
+
+TEST(Regression, FarOutMaskQueriesEndAndAreDefined) {
+    // A jump of 1e12 rows was squared (signed overflow), and a huge circle made the pixel
+    // search run for ever. Shapes beyond +-1e9 px are now no region: a miss.
+    const std::string_view rows[] = {"###", "###"};
+    const Mask m = *Mask::from_rows(rows);
+    const float h = 1e10f;
+    EXPECT_FALSE(collide(PlacedMask{&m, 0, 0}, Aabb{{-h, -h}, {1, h}}).hit);
+    EXPECT_FALSE(collide(PlacedMask{&m, -98, INT_MIN}, Circle{{-1e19f, 7.18e9f}, 1e19f}).hit);
+    // Within the limits a deep push is still found: A inside a 2001 px wide box leaves by 1002.
+    const Manifold deep = collide(PlacedMask{&m, 0, 0}, Aabb{{-1000, -1000}, {1000, 1000}});
+    ASSERT_TRUE(deep.hit);
+    EXPECT_EQ(deep.depth, 1000.0f);
+}
+
+TEST(Regression, ShapesWithoutAFloatSizeAreMisses) {
+    // A segment longer than ~1.8e19 has an infinite length: no axes, and a false hit with a
+    // zero normal.
+    EXPECT_FALSE(collide(Aabb{{0, 0}, {31, 2e9f}}, Segment{{0, 0}, {49, 1e20f}}).hit);
+    EXPECT_FALSE(collide(Aabb{{-3e38f, 0}, {3e38f, 1}}, Circle{{0, 0}, 1}).hit);
+}

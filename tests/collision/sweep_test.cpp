@@ -72,8 +72,13 @@ TEST(SweepCircle, PassesBeside) {
 }
 
 TEST(SweepCircle, Grazing) {
-    // Static at (5,2): F^2 = 29 - 25 = 4 = R^2, G = 0: touches at D = 5, t = 0.5, normal (0,1).
-    EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, Circle{{5, 2}, 1}), 0.5f, {5, 1}, {0, 1}, 1e-4f));
+    // Static at (5,2): F^2 = 29 - 25 = 4 = R^2, G = 0: the path only touches it at t = 0.5 with
+    // the normal (0,1) across the motion. A graze is no contact (the manual): the ball would
+    // otherwise be stopped by a wall it only brushes.
+    EXPECT_TRUE(is_miss(sweep(kMoving, {10, 0}, Circle{{5, 2}, 1})));
+    // A hair closer it moves into B: F = 1.99, G = sqrt(4 - 3.9601) = 0.19975, t = (5 - G)/10.
+    EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, Circle{{5, 1.99f}, 1}), 0.480025f, {4.80025f + 0.09988f, 0.99499f},
+                         {0.09988f, 0.995f}, 1e-4f, 1e-3f));
 }
 
 TEST(SweepCircle, TooShort) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -361,7 +362,12 @@ inline const char* kind_name(Kind k) {
 
 inline std::string describe(const Shape& s) {
     std::string out;
-    auto f = [](float v) { return std::to_string(v); };
+    // Shortest round-trip form, so a printed failure can be pasted back as the same floats.
+    auto f = [](float v) {
+        char buf[32];
+        const auto r = std::to_chars(buf, buf + sizeof buf, v);
+        return std::string(buf, r.ptr);
+    };
     auto p = [&](Vec2 v) { return "(" + f(v.x) + ", " + f(v.y) + ")"; };
     if (const auto* a = std::get_if<Aabb>(&s)) out = "Aabb{" + p(a->min) + ", " + p(a->max) + "}";
     if (const auto* o = std::get_if<Obb>(&s)) out = "Obb{" + p(o->center) + ", " + p(o->half) + ", " + f(o->angle) + "}";

@@ -14,10 +14,13 @@ inline bool finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
 // A shape every query accepts: finite, and well formed (min <= max, half >= 0, r >= 0,
 // 3..16 vertices). Anything else is a miss.
-inline bool valid(const Aabb& b) { return finite(b.min) && finite(b.max) && b.min.x <= b.max.x && b.min.y <= b.max.y; }
+// (Sizes must be finite too: a box or segment from -3e38 to 3e38 has no float length.)
+inline bool valid(const Aabb& b) {
+    return finite(b.min) && finite(b.max) && b.min.x <= b.max.x && b.min.y <= b.max.y && finite(b.max - b.min);
+}
 inline bool valid(const Obb& b) { return finite(b.center) && finite(b.half) && finite(b.angle) && b.half.x >= 0.0f && b.half.y >= 0.0f; }
 inline bool valid(const Circle& c) { return finite(c.center) && finite(c.radius) && c.radius >= 0.0f; }
-inline bool valid(const Segment& s) { return finite(s.a) && finite(s.b); }
+inline bool valid(const Segment& s) { return finite(s.a) && finite(s.b) && finite(dot(s.b - s.a, s.b - s.a)); }
 inline bool valid(const Polygon& p) {
     if (p.count < 3 || p.count > kMaxPolygonVertices) return false;
     for (int i = 0; i < p.count; ++i)

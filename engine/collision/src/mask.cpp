@@ -299,19 +299,20 @@ Manifold search_mtd(const Problem& p, AxisPush bound) {
                 consider(dx, 0);
                 continue;
             }
-            for (i64 k = jump; dx * dx + k * k <= best.r2;) {
+            // k stays <= limit + 1 (the bound is at most a few million), so k * k cannot overflow.
+            for (i64 k = std::min(jump, limit + 1); k <= limit && dx * dx + k * k <= best.r2;) {
                 if (!p.blocked(dx, k, +1, jump)) {
                     consider(dx, k);
                     break;
                 }
-                k += jump;
+                k += std::min(jump, limit + 1);
             }
-            for (i64 k = 1; dx * dx + k * k <= best.r2;) {
+            for (i64 k = 1; k <= limit && dx * dx + k * k <= best.r2;) {
                 if (!p.blocked(dx, -k, -1, jump)) {
                     consider(dx, -k);
                     break;
                 }
-                k += jump;
+                k += std::min(jump, limit + 1);
             }
         }
     }
@@ -522,7 +523,7 @@ struct SegmentRegion {
 
 // Builders: a shape with a NaN or infinite coordinate (or a negative radius) is no region,
 // so every query against it is a miss.
-std::optional<ConvexRegion> region_of(const Aabb& box) {
+std::optional<ConvexRegion> raw_region_of(const Aabb& box) {
     if (!is_finite(box.min) || !is_finite(box.max)) return std::nullopt;
     ConvexRegion r;
     const double x0 = box.min.x, y0 = box.min.y, x1 = box.max.x, y1 = box.max.y;
@@ -538,7 +539,7 @@ std::optional<ConvexRegion> region_of(const Aabb& box) {
     return r;
 }
 
-std::optional<ConvexRegion> region_of(const Obb& box) {
+std::optional<ConvexRegion> raw_region_of(const Obb& box) {
     if (!is_finite(box.center) || !is_finite(box.half) || !std::isfinite(box.angle)) return std::nullopt;
     const Rot q = Rot::from_angle(box.angle);  // the same float rotation as the rest of the module
     const double ux = q.c, uy = q.s, vx = -q.s, vy = q.c;
@@ -564,7 +565,7 @@ std::optional<ConvexRegion> region_of(const Obb& box) {
 }
 
 // Either winding is accepted; fewer than 3 or more than 16 points, or no area, is a miss.
-std::optional<ConvexRegion> region_of(const Polygon& poly) {
+std::optional<ConvexRegion> raw_region_of(const Polygon& poly) {
     if (poly.count < 3 || poly.count > kMaxPolygonVertices) return std::nullopt;
     const auto n = static_cast<std::size_t>(poly.count);
     double area2 = 0.0;
@@ -607,7 +608,7 @@ std::optional<ConvexRegion> region_of(const Polygon& poly) {
     return r;
 }
 
-std::optional<DiscRegion> region_of(const Circle& c) {
+std::optional<DiscRegion> raw_region_of(const Circle& c) {
     if (!is_finite(c.center) || !std::isfinite(c.radius) || c.radius < 0.0f) return std::nullopt;
     DiscRegion r;
     r.cx = c.center.x;
@@ -621,7 +622,7 @@ std::optional<DiscRegion> region_of(const Circle& c) {
     return r;
 }
 
-std::optional<SegmentRegion> region_of(const Segment& s) {
+std::optional<SegmentRegion> raw_region_of(const Segment& s) {
     if (!is_finite(s.a) || !is_finite(s.b)) return std::nullopt;
     SegmentRegion r;
     r.ax = s.a.x;
@@ -631,6 +632,20 @@ std::optional<SegmentRegion> region_of(const Segment& s) {
     r.bounds = {std::min(r.ax, r.bx), std::min(r.ay, r.by), std::max(r.ax, r.bx), std::max(r.ay, r.by)};
     r.centre_x = 0.5 * (r.ax + r.bx);
     r.centre_y = 0.5 * (r.ay + r.by);
+    return r;
+}
+
+// Shapes reaching beyond +-1e9 px (far outside the coordinate limits) are no region either:
+// the pixel search there would run for ever or overflow, and a miss is a defined answer.
+constexpr double kMaxRegionCoordinate = 1e9;
+
+template <class S>
+auto region_of(const S& shape) {
+    auto r = raw_region_of(shape);
+    if (r && !(std::abs(r->bounds.min_x) <= kMaxRegionCoordinate && std::abs(r->bounds.min_y) <= kMaxRegionCoordinate &&
+               std::abs(r->bounds.max_x) <= kMaxRegionCoordinate && std::abs(r->bounds.max_y) <= kMaxRegionCoordinate)) {
+        r.reset();
+    }
     return r;
 }
 

@@ -29,97 +29,99 @@ detail::CircleContact detail::first_contact_with_circle(Vec2 offset, Vec2 v, flo
     const float G = std::sqrt(radius * radius - F2);
     const float travel = D - G;
     if (travel > speed) return {};  // 09-118: ||v|| >= D - G; touching at the end counts
+    // Already within R up to rounding (the caller found no overlap): contact at t = 0, seen
+    // from where the point is. G is ill-conditioned there (the square root of rounding), so
+    // the formula below would tilt the normal toward the motion.
+    if (!(travel > 0.0f)) return {true, 0.0f, normalize_or(-offset, -dir)};
     // With offset = D dir + F perp(dir), the point at contact is -G dir - F perp(dir) from the
     // centre: exact, where forming it from positions would round.
-    const Vec2 outward = normalize_or(-G * dir - F * perp(dir), -dir);
-    return {true, travel > 0.0f ? travel / speed : 0.0f, outward};
+    return {true, travel / speed, normalize_or(-G * dir - F * perp(dir), -dir)};
 }
 
 namespace {
 
+// A contact counts only while A moves into B: dot(v / |v|, n) > kGrazing (about 0.0006
+// degrees). Anything less is a graze, or sliding along B, whose direction is rounding noise:
+// a ball left touching a wall by the MTD push, or rolling over a mask's pixel seams, slides on.
+constexpr float kGrazing = 1e-5f;
+
+bool moving_into(Vec2 v, Vec2 n) { return dot(v, n) > kGrazing * length(v); }
+
 // The sweep answer once the circle (centre c, radius r, velocity v) touches at time t with
 // unit normal n (from the circle toward the other shape).
 SweepHit contact_at(Vec2 c, Vec2 v, float r, float t, Vec2 n) {
-    return {true, t, c + t * v + r * n, detail::plain_zeros(n)};
+    const Vec2 clean = detail::plain_zeros(n);
+    return {true, t + 0.0f, detail::plain_zeros(c + t * v + r * clean), clean};
 }
 
-// Shapes already touching or overlapping at t = 0: a contact at t = 0 only while A moves
-// into B (09-114's moving-away early out applies here too). A ball resting against a wall
-// and moving off it, or sliding along it, has no contact ahead. `shape_vs_circle` is the
-// collide() manifold of (shape, circle), whose normal points from the shape to the circle.
+// Shapes already touching or overlapping at t = 0: a contact at t = 0 only while A moves into
+// B (09-114's moving-away early out applies here too); moving off or along B is no contact,
+// and for a convex B there is none later either. `shape_vs_circle` is the collide() manifold
+// of (shape, circle), whose normal points from the shape to the circle.
 SweepHit contact_at_start(const Circle& moving, Vec2 v, const Manifold& shape_vs_circle) {
     const Vec2 n = -shape_vs_circle.normal;
-    if (!(dot(v, n) > 0.0f)) return {};
+    if (!moving_into(v, n)) return {};
     // The contact point: where the circle's surface meets the shape along the normal.
-    return {true, 0.0f, moving.center + (moving.radius - shape_vs_circle.depth) * n, detail::plain_zeros(n)};
+    return contact_at(moving.center + (moving.radius - shape_vs_circle.depth) * n, {}, 0.0f, 0.0f, n);
 }
 
-// First contact of a circle moving by v with the convex shape given by its vertices and
-// outward edge normals (a segment is the 2-gon a->b, b->a); the circle does not touch the
-// shape at t = 0. The centre moves against the shape grown by r, whose boundary is every
-// face pushed out by r and a circle of radius r at every vertex. The path is clipped
-// against the pushed-out half-planes (Cyrus-Beck): where it enters through a face's own
-// window, that is the contact; where it enters beside the window, it is in a corner's wedge
-// and meets that vertex's circle or nothing. Worked relative to the circle's start, so that
-// a shape far from the origin keeps the precision of its size.
-SweepHit sweep_rounded(const Circle& moving, Vec2 v, const Vec2* points, const Vec2* normals, int count) {
+// First contact of a circle moving by v with a convex shape given by its vertices and outward
+// edge normals (a segment is the 2-gon a->b, b->a); the caller has checked that they are not in
+// contact at t = 0, and passes `entry`, the cast of the centre alone against the shape.
+// The contact is the earliest of: the centre coming within r of a face's line inside that
+// face's window (09-115's closest approach, per face), the centre coming within r of a vertex
+// (D/F/G, 09-118), and the centre itself entering the shape. The last bounds the others: with
+// a radius below the rounding of the first two, it is what stops the ball, so nothing passes
+// through. Worked relative to the circle's start, where floats are dense.
+SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Vec2* normals, int count,
+                      const CastHit& entry) {
     const Vec2 from = moving.center;
     const float r = moving.radius;
-    // The entering face is tracked even before t = 0: a start within rounding of a face (or
-    // in a corner's wedge) entered the pushed-out polygon at a slightly negative time.
-    float t_enter = -INFINITY;
-    float t_exit = 1.0f;
-    int face = -1;
+    // The contact's feature gives its normal: the entry's face, a face, or a vertex.
+    float best_t = entry.hit ? entry.t : INFINITY;
+    Vec2 outward = entry.normal;
+    int vertex = -1;
     for (int i = 0; i < count; ++i) {
         const Vec2 n = normals[i];
-        const float num = r + dot(n, points[i] - from);  // >= 0: the start is inside this half-plane
-        const float den = dot(n, v);                    // < 0: moving inward through the face
-        if (den == 0.0f) {
-            if (num < 0.0f) return {};  // parallel to the face, outside it
-            continue;
+        const Vec2 e = points[(i + 1) % count] - points[i];
+        const float ee = dot(e, e);
+        const float closing = -dot(n, v);
+        if (!(ee > 0.0f) || !(closing > 0.0f)) continue;  // a zero-length face is its vertex
+        const Vec2 f = from - points[i];
+        const float gap = dot(n, f) - r;  // from the face's line pushed out by r
+        // A start behind that line by more than rounding is not an entry through this face: it
+        // is beside the face's window (in a corner's wedge), or the shapes would overlap.
+        if (gap < -8.0f * FLT_EPSILON * (length(f) + r)) continue;
+        const float t = gap > 0.0f ? gap / closing : 0.0f;
+        if (!(t <= 1.0f) || !(t < best_t)) continue;
+        const float along = dot(f + t * v, e);
+        if (along >= 0.0f && along <= ee) {
+            best_t = t;
+            outward = n;
+            vertex = -1;
         }
-        const float t = num / den;
-        if (den < 0.0f) {
-            if (t > t_enter) { t_enter = t; face = i; }
-        } else if (t < t_exit) {
-            t_exit = t;
-        }
-        if (!(t_enter <= t_exit)) return {};
     }
-    if (v == Vec2{} || t_exit < 0.0f) return {};  // not moving, or its line passed it before t = 0
-    int vertex = -1;
-    if (face >= 0 && t_enter >= 0.0f) {
-        const Vec2 e = points[(face + 1) % count] - points[face];
-        const Vec2 q = t_enter * v - (points[face] - from);  // the entry point, from the face's first vertex
-        const float along = dot(q, e);
-        // Rounding can put an entry through the face's end just beside its window: allow it.
-        const float slack = 8.0f * FLT_EPSILON * (length(q) + length(e)) * length(e);
-        if (r == 0.0f || (along >= -slack && along <= dot(e, e) + slack)) {
-            return contact_at(from, v, r, t_enter, -normals[face]);
-        }
-        vertex = along < 0.0f ? face : (face + 1) % count;
-    } else {
-        // The start is inside every pushed-out half-plane (or, for a segment moving along its
-        // own line, inside the strip they form), yet does not overlap the shape: it is in a
-        // corner's wedge, or on a face up to rounding. The nearest feature says which.
-        int edge = 0;
-        float param = 0.0f, best_d2 = INFINITY;
+    if (r > 0.0f) {
         for (int i = 0; i < count; ++i) {
-            const Vec2 a = points[i], b = points[(i + 1) % count];
-            const float s = detail::segment_param(a, b, from);
-            const float d2 = length_squared((from - a) - s * (b - a));
-            if (d2 < best_d2) { best_d2 = d2; edge = i; param = s; }
+            const detail::CircleContact c = detail::first_contact_with_circle(points[i] - from, v, r);
+            if (c.hit && c.t < best_t) {
+                best_t = c.t;
+                outward = c.outward;
+                vertex = i;
+            }
         }
-        if (param > 0.0f && param < 1.0f) {  // touching a face: a contact only when moving into it
-            if (!(dot(v, normals[edge]) < 0.0f)) return {};
-            return contact_at(from, v, r, 0.0f, -normals[edge]);
-        }
-        vertex = param <= 0.0f ? edge : (edge + 1) % count;
     }
-    // In a corner's wedge: that vertex's circle, or nothing.
-    const detail::CircleContact c = detail::first_contact_with_circle(points[vertex] - from, v, r);
-    if (!c.hit) return {};
-    return contact_at(from, v, r, c.t, -c.outward);
+    if (best_t == INFINITY) return {};
+    if (vertex >= 0) {
+        // Kept inside the vertex's cone of normals: a vertex hit that rounding let win over an
+        // adjacent face's (equal) time gets that face's exact normal.
+        const Vec2 n_prev = normals[(vertex + count - 1) % count];
+        const Vec2 n_next = normals[vertex];
+        if (cross(n_prev, outward) < 0.0f) outward = n_prev;
+        if (cross(outward, n_next) < 0.0f) outward = n_next;
+    }
+    if (!moving_into(v, -outward)) return {};  // only grazes it
+    return contact_at(from, v, r, best_t, -outward);
 }
 
 }  // namespace
@@ -130,7 +132,7 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Circle& fixed) {
     const float r = moving.radius + fixed.radius;
     if (dot(delta, delta) <= r * r) return contact_at_start(moving, v, detail::flipped(collide(moving, fixed)));
     const detail::CircleContact c = detail::first_contact_with_circle(delta, v, r);
-    if (!c.hit) return {};
+    if (!c.hit || !moving_into(v, -c.outward)) return {};  // a miss, or a graze (F = R)
     return contact_at(moving.center, v, moving.radius, c.t, -c.outward);
 }
 
@@ -174,18 +176,28 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Polygon& poly) {
     if (!valid(moving) || !valid(poly) || !detail::valid_motion(moving.center, v)) return {};
     const Manifold start = collide(poly, moving);
     if (start.hit) return contact_at_start(moving, v, start);
-    return sweep_rounded(moving, v, poly.points.data(), poly.normals.data(), poly.count);
+    return sweep_convex(moving, v, poly.points.data(), poly.normals.data(), poly.count,
+                        cast(moving.center, moving.center + v, poly));
 }
 
 SweepHit sweep(const Circle& moving, Vec2 v, const Aabb& box) {
-    if (!valid(box)) return {};
-    return sweep(moving, v, to_polygon(box));
+    // The start is judged by the same box clamp as collide(Circle, Aabb), so both agree on
+    // ties; the motion by the box's polygon (its corners are exact).
+    if (!valid(moving) || !valid(box) || !detail::valid_motion(moving.center, v)) return {};
+    const Manifold start = collide(box, moving);
+    if (start.hit) return contact_at_start(moving, v, start);
+    const Polygon p = to_polygon(box);
+    return sweep_convex(moving, v, p.points.data(), p.normals.data(), 4, cast(moving.center, moving.center + v, box));
 }
 
 SweepHit sweep(const Circle& moving, Vec2 v, const Obb& box) {
     // Solved with the box's centre at the origin, where its corners are precise.
-    if (!valid(box)) return {};
-    SweepHit h = sweep(Circle{moving.center - box.center, moving.radius}, v, detail::centred_polygon(box));
+    if (!valid(moving) || !valid(box) || !detail::valid_motion(moving.center, v)) return {};
+    const Manifold start = collide(box, moving);
+    if (start.hit) return contact_at_start(moving, v, start);
+    const Polygon p = detail::centred_polygon(box);
+    const Vec2 from = moving.center - box.center;
+    SweepHit h = sweep_convex(Circle{from, moving.radius}, v, p.points.data(), p.normals.data(), 4, cast(from, from + v, p));
     if (h.hit) h.point += box.center;
     return h;
 }
@@ -196,10 +208,11 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Segment& seg) {
     const Manifold start = collide(seg, moving);
     if (start.hit) return contact_at_start(moving, v, start);
     if (seg.a == seg.b) return sweep(moving, v, Circle{seg.a, 0.0f});
-    const Vec2 dir = normalize_or(seg.b - seg.a, Vec2{1.0f, 0.0f});
+    const Vec2 e = seg.b - seg.a;
+    const Vec2 n = normalize_or(Vec2{e.y, -e.x}, Vec2{1.0f, 0.0f});
     const Vec2 points[2] = {seg.a, seg.b};
-    const Vec2 normals[2] = {Vec2{dir.y, -dir.x}, Vec2{-dir.y, dir.x}};
-    return sweep_rounded(moving, v, points, normals, 2);
+    const Vec2 normals[2] = {n, -n};
+    return sweep_convex(moving, v, points, normals, 2, cast(moving.center, moving.center + v, seg));
 }
 
 SweepHit sweep(const Circle& moving, Vec2 v, const PlacedMask& m) {

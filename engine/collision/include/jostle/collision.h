@@ -38,10 +38,12 @@
 //             starts on any set pixel).
 //   SweepHit  {hit, t, point, normal}: a circle moving by va and a shape moving by vb over one
 //             frame first touch at time t in [0, 1]; point is the contact point at that time,
-//             normal points from A (the circle) toward B. Shapes already touching or
-//             overlapping at t = 0 report t = 0 only while A moves into B (dot(va - vb,
-//             normal) > 0); moving off or along B is no hit (the lecture's moving-away early
-//             out, 09-114), so a ball left touching a wall by the MTD push can leave it.
+//             normal points from A (the circle) toward B. A contact counts only while A
+//             moves into B: dot((va - vb) / |va - vb|, normal) > 1e-5. So shapes already
+//             touching or overlapping at t = 0 report t = 0 only when A moves into B; moving
+//             off B, sliding along it or a path that only grazes it is no hit (the lecture's
+//             moving-away early out, 09-114): a ball left touching a wall by the MTD push can
+//             leave it, and a ball rolls over a mask's pixel seams.
 //
 // PAIR TABLE: how collide(A, B) is computed (the reverse order swaps and flips the normal;
 // for two shapes of the same kind whose pushes tie, the first tied axis of A wins, so the
@@ -343,7 +345,8 @@ CastHit cast(Vec2 from, Vec2 to, const Shape& s);
 // ---------------------------------------------------------------------------------------
 
 // Method #2 (09-111 to 09-122): a circle moving by v against a static circle, by the D/F/G
-// closed form: moving-away early out, closest approach F, then first contact at D - G.
+// closed form: moving-away early out, closest approach F, then first contact at D - G. The
+// slide counts F = R (a graze) as a hit; here it is none, as for every sweep.
 SweepHit sweep(const Circle& moving, Vec2 v, const Circle& fixed);
 // Two moving circles: the same, with the relative velocity v1 - v2 (09-126/127).
 SweepHit sweep(const Circle& a, Vec2 va, const Circle& b, Vec2 vb);
@@ -360,8 +363,9 @@ SweptCapsule swept_capsule(const Circle& c, Vec2 v);
 // Does the circle touch `fixed` anywhere along its path? (overlap test, no time)
 bool swept_overlaps(const Circle& moving, Vec2 v, const Circle& fixed);
 
-// A moving circle against a static box, polygon or segment: first contact of the centre
-// with the shape grown by the radius, so no fast ball passes through a thin wall.
+// A moving circle against a static box, polygon or segment: the earliest of the centre
+// coming within r of a face (inside the face's window) or of a vertex, bounded by the centre
+// itself entering the shape, so no fast ball passes through a thin wall, whatever its radius.
 SweepHit sweep(const Circle& moving, Vec2 v, const Aabb& box);
 SweepHit sweep(const Circle& moving, Vec2 v, const Obb& box);
 SweepHit sweep(const Circle& moving, Vec2 v, const Polygon& poly);
