@@ -308,3 +308,62 @@ TEST(Regression, ShapesWithoutAFloatSizeAreMisses) {
     EXPECT_FALSE(collide(Aabb{{0, 0}, {31, 2e9f}}, Segment{{0, 0}, {49, 1e20f}}).hit);
     EXPECT_FALSE(collide(Aabb{{-3e38f, 0}, {3e38f, 1}}, Circle{{0, 0}, 1}).hit);
 }
+
+TEST(Regression, DegenerateBoxesAndSegmentEndsKeepTheirNormals) {
+    // The vertex-cone clamp assumed every vertex sits between two faces of non-zero length and
+    // a cone under 180 degrees: on point-sized and flat boxes, and at segment ends, it flipped
+    // or bent the normal, and the ball passed through.
+    const SweepHit point_box = sweep(Circle{{5, 0.5f}, 1}, {-10, 0}, Aabb{{0, 0}, {0, 0}});
+    ASSERT_TRUE(point_box.hit);
+    EXPECT_NEAR(point_box.t, 0.4133975f, 1e-6f);
+    EXPECT_NEAR(point_box.normal.x, -0.8660254f, 1e-5f);
+    EXPECT_NEAR(point_box.normal.y, -0.5f, 1e-5f);
+    EXPECT_TRUE(sweep(Circle{{5, 0}, 1}, {-10, 0}, Aabb{{0, 0}, {0, 0}}).hit);
+    const SweepHit flat = sweep(Circle{{3, -1.5f}, 1}, {-6, 0}, Aabb{{0, -1}, {0, 1}});
+    ASSERT_TRUE(flat.hit);
+    EXPECT_NEAR(flat.t, 0.3556624f, 1e-6f);
+    EXPECT_NEAR(flat.normal.x, -0.8660254f, 1e-5f);
+    EXPECT_NEAR(flat.normal.y, 0.5f, 1e-5f);
+    const SweepHit end_on = sweep(Circle{{0.5f, -5}, 1}, {0, 10}, Aabb{{0, -1}, {0, 1}});
+    ASSERT_TRUE(end_on.hit);
+    EXPECT_NEAR(end_on.normal.x, -0.5f, 1e-5f);
+    EXPECT_NEAR(end_on.normal.y, 0.8660254f, 1e-5f);
+    EXPECT_NEAR(end_on.point.x, 0.0f, 1e-5f);
+    EXPECT_NEAR(end_on.point.y, -1.0f, 1e-5f);
+    EXPECT_TRUE(sweep(Circle{{-4.59836864f, -3.39034963f}, 7.96912718f}, {36.2582741f, 17.7595425f},
+                      Segment{{-4.59836864f, 4.57877779f}, {-4.11183548f, 4.57877779f}})
+                    .hit);
+    EXPECT_TRUE(sweep(Circle{{-8.67824268f, 11.8649778f}, 6.42695284f}, {-3.27558041f, -17.628212f},
+                      Segment{{-3.95502901f, 7.50642538f}, {-11.5732183f, -0.749145567f}})
+                    .hit);
+}
+
+TEST(Regression, ACentreWithinRoundingOfAFaceGetsTheFaceNormal) {
+    // The start normal came from a closest-point offset of rounding size: noise, so a ball
+    // moving into the polygon could be judged "moving away" and pass through it.
+    const Polygon tri = poly({{-0.116511136f, -8.37007427f}, {5.58140135f, -1.3979876f}, {5.09349918f, -0.00606419798f}});
+    for (const float r : {0.0f, 1e-6f, 1e-3f}) {
+        const SweepHit h = sweep(Circle{{2.54511476f, -5.11325312f}, r}, {-2.69190645f, -1.60129333f}, tri);
+        ASSERT_TRUE(h.hit) << "r " << r;
+        EXPECT_LT(h.t, 1e-5f);
+        EXPECT_NEAR(h.normal.x, -0.774f, 1e-3f);
+        EXPECT_NEAR(h.normal.y, 0.633f, 1e-3f);
+    }
+}
+
+TEST(Regression, StartTestAndEntryCastDisagreeingByRoundingIsStillAContact) {
+    // The box clamp said "not touching", the cast said "starts inside": t = 0 with a zero
+    // normal blocked every face, and the point passed through the box.
+    const Obb box{{-9.2718935f, 0.834006965f}, {3.07004738f, 9.1398325f}, 2.47207189f};
+    const SweepHit h = sweep(Circle{{-11.1028528f, 3.46747494f}, 0}, {0.670258403f, -2.18793559f}, box);
+    ASSERT_TRUE(h.hit);
+    EXPECT_LT(h.t, 1e-5f);
+    EXPECT_NEAR(h.normal.x, 0.784f, 1e-3f);
+    EXPECT_NEAR(h.normal.y, -0.621f, 1e-3f);
+}
+
+TEST(Regression, TinySpeedsAreJudgedByDirection) {
+    // |v| underflowed to 0 in the "moving into" test, so a graze at a tiny speed was a hit.
+    EXPECT_FALSE(sweep(Circle{{0, 0}, 1}, {1e-25f, 1e-31f}, Aabb{{-100, 1}, {100, 2}}).hit);
+    EXPECT_TRUE(sweep(Circle{{0, 0}, 1}, {1e-25f, 1e-25f}, Aabb{{-100, 1}, {100, 2}}).hit);
+}

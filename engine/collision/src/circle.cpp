@@ -2,6 +2,7 @@
 // closest point on the boundary and by SAT with the centre-to-vertex axis, box-circle by
 // the "push in" clamp, segment-circle. The slides test "< r" (09-71, 09-87); here touching
 // (== r) is a hit with depth 0, the convention for every pair.
+#include <cfloat>
 #include <cmath>
 
 #include "internal.h"
@@ -41,8 +42,13 @@ Manifold collide(const Polygon& a, const Circle& b) {
     const Vec2 d = detail::offset_from_boundary(a, c, &edge);  // c - p, relative for precision
     const float dist2 = dot(d, d);
     if (!(dist2 <= b.radius * b.radius)) return {};
-    // On the boundary up to rounding (d can come out as zero): the edge's normal.
-    return hit_with(b.radius - std::sqrt(dist2), normalize_or(d, a.normals[edge]));
+    // On the boundary up to rounding, d is rounding noise (or zero): the face the centre is
+    // outside of gives the normal.
+    const float dist = std::sqrt(dist2);
+    const Vec2 p = a.points[max_edge];
+    const float rounding = 16.0f * FLT_EPSILON * (length(c - p) + length(a.points[(max_edge + 1) % a.count] - p));
+    if (dist <= rounding) return hit_with(b.radius - dist, a.normals[max_edge]);
+    return hit_with(b.radius - dist, normalize_or(d, a.normals[edge]));
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {

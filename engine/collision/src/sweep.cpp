@@ -45,7 +45,14 @@ namespace {
 // a ball left touching a wall by the MTD push, or rolling over a mask's pixel seams, slides on.
 constexpr float kGrazing = 1e-5f;
 
-bool moving_into(Vec2 v, Vec2 n) { return dot(v, n) > kGrazing * length(v); }
+bool moving_into(Vec2 v, Vec2 n) {
+    // On v scaled to a largest component of 1, so that tiny or huge speeds neither underflow
+    // nor overflow the length.
+    const float m = std::fmax(std::fabs(v.x), std::fabs(v.y));
+    if (!(m > 0.0f)) return false;
+    const Vec2 u{v.x / m, v.y / m};
+    return dot(u, n) > kGrazing * length(u);
+}
 
 // The sweep answer once the circle (centre c, radius r, velocity v) touches at time t with
 // unit normal n (from the circle toward the other shape).
@@ -77,6 +84,20 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
                       const CastHit& entry) {
     const Vec2 from = moving.center;
     const float r = moving.radius;
+    if (entry.hit && entry.t == 0.0f) {
+        // The cast finds the centre in (or on) the shape where the start test found no
+        // overlap: both are right up to rounding. A contact at t = 0 through the face the
+        // centre is nearest the outside of, if moving into it.
+        int face = -1;
+        float best_side = -INFINITY;
+        for (int i = 0; i < count; ++i) {
+            const Vec2 e = points[(i + 1) % count] - points[i];
+            const float side = dot(normals[i], from - points[i]);
+            if (dot(e, e) > 0.0f && side > best_side) { best_side = side; face = i; }
+        }
+        if (face < 0 || !moving_into(v, -normals[face])) return {};
+        return contact_at(from, v, r, 0.0f, -normals[face]);
+    }
     // The contact's feature gives its normal: the entry's face, a face, or a vertex.
     float best_t = entry.hit ? entry.t : INFINITY;
     Vec2 outward = entry.normal;
@@ -113,12 +134,24 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
     }
     if (best_t == INFINITY) return {};
     if (vertex >= 0) {
-        // Kept inside the vertex's cone of normals: a vertex hit that rounding let win over an
-        // adjacent face's (equal) time gets that face's exact normal.
-        const Vec2 n_prev = normals[(vertex + count - 1) % count];
-        const Vec2 n_next = normals[vertex];
-        if (cross(n_prev, outward) < 0.0f) outward = n_prev;
-        if (cross(outward, n_next) < 0.0f) outward = n_next;
+        // Kept inside the vertex's cone of normals, between the normals of the nearest faces
+        // of non-zero length before and after it: a vertex hit that rounding let win over an
+        // adjacent face's (equal) time gets that face's exact normal. A cone of 180 degrees or
+        // more (a segment's end, a flat or point-sized box) needs no clamp.
+        int prev = -1, next = -1;
+        for (int k = 1; k <= count && prev < 0; ++k) {
+            const int i = (vertex + count - k) % count;
+            if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) prev = i;
+        }
+        for (int k = 0; k < count && next < 0; ++k) {
+            const int i = (vertex + k) % count;
+            if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) next = i;
+        }
+        if (prev >= 0 && next >= 0 && cross(normals[prev], normals[next]) > 0.0f) {
+            const Vec2 n_prev = normals[prev], n_next = normals[next];
+            if (cross(n_prev, outward) < 0.0f || cross(outward, n_next) < 0.0f)
+                outward = dot(outward, n_prev) >= dot(outward, n_next) ? n_prev : n_next;
+        }
     }
     if (!moving_into(v, -outward)) return {};  // only grazes it
     return contact_at(from, v, r, best_t, -outward);
@@ -206,10 +239,20 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Segment& seg) {
     // A segment grown by r is a capsule: the 2-gon a->b, b->a with its two normals.
     if (!valid(moving) || !valid(seg) || !detail::valid_motion(moving.center, v)) return {};
     const Manifold start = collide(seg, moving);
-    if (start.hit) return contact_at_start(moving, v, start);
-    if (seg.a == seg.b) return sweep(moving, v, Circle{seg.a, 0.0f});
     const Vec2 e = seg.b - seg.a;
     const Vec2 n = normalize_or(Vec2{e.y, -e.x}, Vec2{1.0f, 0.0f});
+    if (start.hit) {
+        // A centre on the segment up to rounding has no side of its own: it is pushing into the
+        // wall on the side it moves toward.
+        const Vec2 off = detail::offset_from_segment(seg.a, seg.b, moving.center);
+        if (seg.a != seg.b && length(off) <= 16.0f * FLT_EPSILON * (length(moving.center - seg.a) + length(e))) {
+            const Vec2 into = dot(v, n) >= 0.0f ? n : -n;
+            if (!moving_into(v, into)) return {};
+            return contact_at(moving.center, v, moving.radius, 0.0f, into);
+        }
+        return contact_at_start(moving, v, start);
+    }
+    if (seg.a == seg.b) return sweep(moving, v, Circle{seg.a, 0.0f});
     const Vec2 points[2] = {seg.a, seg.b};
     const Vec2 normals[2] = {n, -n};
     return sweep_convex(moving, v, points, normals, 2, cast(moving.center, moving.center + v, seg));
