@@ -367,3 +367,64 @@ TEST(Regression, TinySpeedsAreJudgedByDirection) {
     EXPECT_FALSE(sweep(Circle{{0, 0}, 1}, {1e-25f, 1e-31f}, Aabb{{-100, 1}, {100, 2}}).hit);
     EXPECT_TRUE(sweep(Circle{{0, 0}, 1}, {1e-25f, 1e-25f}, Aabb{{-100, 1}, {100, 2}}).hit);
 }
+
+TEST(Regression, StartsInContactThatMoveInStopAtOnce) {
+    // The face test allowed rounding on the scale of the distance to the face's first corner,
+    // but the start test measures from elsewhere on B: "not touching" there, "already behind
+    // the face" here, and the ball sank by its whole radius before the centre stopped it.
+    const SweepHit obb = sweep(Circle{{-3.06866813f, 0.0029093551f}, 0.1f}, {0.788865268f, 1.87520123f},
+                               Obb{{-3.20590687f, 9.16156769f}, {8.86171055f, 2.21230912f}, -1.34752405f});
+    ASSERT_TRUE(obb.hit);
+    EXPECT_LT(obb.t, 1e-5f);
+    const SweepHit seg = sweep(Circle{{-2.21535778f, -6.23476601f}, 0.1f}, {-3.38186669f, 5.51694059f},
+                               Segment{{3.95890999f, 2.33692813f}, {-2.59510803f, -6.58270121f}});
+    ASSERT_TRUE(seg.hit);
+    EXPECT_LT(seg.t, 1e-5f);
+    const SweepHit far = sweep(Circle{{4014.61011f, -18381.7656f}, 4.18217468f}, {191.194901f, -370.792084f},
+                               Segment{{-4709.37695f, -9561.53223f}, {4227.04395f, -18602.6367f}});
+    ASSERT_TRUE(far.hit);
+    EXPECT_LT(far.t, 1e-4f);
+    EXPECT_NEAR(far.normal.x, -0.711f, 2e-3f);
+    EXPECT_NEAR(far.normal.y, -0.703f, 2e-3f);
+}
+
+TEST(Regression, SegmentEndHitsKeepTheFaceNormal) {
+    // A 180-degree cone was left unclamped, so a corner that tied the face by rounding kept a
+    // normal pointing past the end's half-plane (0.1 rad off at r = 1e-3).
+    const SweepHit a = sweep(Circle{{-34.956337f, 11.372901f}, 1e-3f}, {36.9373817f, -5.19411421f},
+                             Obb{{-9.60486794f, 10.2579308f}, {2.4377284f, 0}, -1.61265802f});
+    ASSERT_TRUE(a.hit);
+    EXPECT_NEAR(a.normal.x, 0.9991239f, 1e-3f);
+    EXPECT_NEAR(a.normal.y, -0.0418494f, 1e-3f);
+    const SweepHit b = sweep(Circle{{-21.3391781f, 0.395019501f}, 1e-3f}, {33.3757324f, 1.91144979f},
+                             Aabb{{3.97862625f, -8.29604149f}, {3.97862625f, 1.84498656f}});
+    ASSERT_TRUE(b.hit);
+    EXPECT_NEAR(b.t, 0.758539289f, 1e-6f);
+    EXPECT_NEAR(b.normal.x, 1.0f, 1e-4f);
+    EXPECT_NEAR(b.normal.y, 0.0f, 1e-3f);
+}
+
+TEST(Regression, CircleBesideAnEdgeGetsTheEdgeNormalExactly) {
+    // collide(Polygon, Circle) normalised c - p even beside an edge; from the far corner of a
+    // long edge that rounded toward the corner, and a sweep moving into the face was judged
+    // as moving past it.
+    const Polygon big = poly({{999.242065f, 2444.20117f}, {-2880.24683f, 10974.8838f}, {-5344.08496f, 14344.9561f},
+                              {-6766.12061f, 12072.3711f}, {-6253.45557f, 10356.2988f}});
+    const Circle ball{{1000.14508f, 2444.6311f}, 1};
+    const Manifold m = collide(big, ball);
+    const Manifold s = collide_sat(big, ball);
+    ASSERT_TRUE(m.hit);
+    EXPECT_NEAR(m.normal.x, s.normal.x, 1e-5f);
+    EXPECT_NEAR(m.normal.y, s.normal.y, 1e-5f);
+    const SweepHit h = sweep(ball, {-1584.62561f, 3393.98633f}, big);
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.t, 0.0f);
+    EXPECT_NEAR(h.normal.x, -0.9102898f, 1e-5f);
+    EXPECT_NEAR(h.normal.y, -0.4139715f, 1e-5f);
+    const Polygon tri = poly({{-9.23427963f, -10.1624537f}, {4.54126692f, -15.7765675f}, {7.35980749f, -4.36865044f}});
+    const SweepHit k = sweep(Circle{{-9.23803997f, -10.1717196f}, 0.01f}, {8.95998669f, -3.64112687f}, tri);
+    ASSERT_TRUE(k.hit);
+    EXPECT_EQ(k.t, 0.0f);
+    EXPECT_NEAR(k.normal.x, 0.3774f, 1e-3f);
+    EXPECT_NEAR(k.normal.y, 0.9260f, 1e-3f);
+}

@@ -38,17 +38,21 @@ Manifold collide(const Polygon& a, const Circle& b) {
     }
     if (max_sep > b.radius) return {};  // an edge normal separates: early out
     if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals[max_edge]);  // centre inside
+    // Beside the edge of greatest separation (c projects inside it, tested from each end so
+    // that a long edge rounds neither), that edge is the nearest feature: its own normal and
+    // the separation are exact where normalising c - p would round.
+    const Vec2 p0 = a.points[max_edge];
+    const Vec2 p1 = a.points[(max_edge + 1) % a.count];
+    const Vec2 e = p1 - p0;
+    if (dot(c - p0, e) > 0.0f && dot(c - p1, e) < 0.0f) return hit_with(b.radius - max_sep, a.normals[max_edge]);
+    // Otherwise the nearest feature is a vertex: the direction from it to the centre.
     int edge = 0;
     const Vec2 d = detail::offset_from_boundary(a, c, &edge);  // c - p, relative for precision
-    const float dist2 = dot(d, d);
-    if (!(dist2 <= b.radius * b.radius)) return {};
-    // On the boundary up to rounding, d is rounding noise (or zero): the face the centre is
-    // outside of gives the normal.
-    const float dist = std::sqrt(dist2);
-    const Vec2 p = a.points[max_edge];
-    const float rounding = 16.0f * FLT_EPSILON * (length(c - p) + length(a.points[(max_edge + 1) % a.count] - p));
-    if (dist <= rounding) return hit_with(b.radius - dist, a.normals[max_edge]);
-    return hit_with(b.radius - dist, normalize_or(d, a.normals[edge]));
+    if (!(dot(d, d) <= b.radius * b.radius)) return {};
+    const float dist = length(d);
+    // On the vertex up to rounding, c - p is noise: the face the centre is outside of.
+    const float rounding = 16.0f * FLT_EPSILON * (length(c - p0) + length(e));
+    return hit_with(b.radius - dist, dist <= rounding ? a.normals[max_edge] : normalize_or(d, a.normals[max_edge]));
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {
@@ -128,6 +132,12 @@ Manifold collide(const Segment& a, const Circle& b) {
     if (!(dist2 <= b.radius * b.radius)) return {};
     const Vec2 e = a.b - a.a;
     const Vec2 side = a.a == a.b ? Vec2{1.0f, 0.0f} : normalize_or(Vec2{e.y, -e.x}, Vec2{1.0f, 0.0f});
+    // Beside the segment (the closest point inside it), its normal on the centre's side and the
+    // distance along it are exact where normalising c - p would round.
+    if (dot(b.center - a.a, e) > 0.0f && dot(b.center - a.b, e) < 0.0f) {  // from each end, for precision
+        const float along = dot(side, b.center - a.a);
+        return hit_with(b.radius - std::fabs(along), along < 0.0f ? -side : side);
+    }
     return hit_with(b.radius - std::sqrt(dist2), normalize_or(d, side));
 }
 

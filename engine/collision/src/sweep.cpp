@@ -112,7 +112,8 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
         const float gap = dot(n, f) - r;  // from the face's line pushed out by r
         // A start behind that line by more than rounding is not an entry through this face: it
         // is beside the face's window (in a corner's wedge), or the shapes would overlap.
-        if (gap < -8.0f * FLT_EPSILON * (length(f) + r)) continue;
+        // (The start test measured from elsewhere on B, so allow for rounding on B's scale.)
+        if (gap < -16.0f * FLT_EPSILON * (length(f) + std::sqrt(ee) + r)) continue;
         const float t = gap > 0.0f ? gap / closing : 0.0f;
         if (!(t <= 1.0f) || !(t < best_t)) continue;
         const float along = dot(f + t * v, e);
@@ -147,10 +148,14 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
             const int i = (vertex + k) % count;
             if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) next = i;
         }
-        if (prev >= 0 && next >= 0 && cross(normals[prev], normals[next]) > 0.0f) {
+        if (prev >= 0 && next >= 0) {
             const Vec2 n_prev = normals[prev], n_next = normals[next];
-            if (cross(n_prev, outward) < 0.0f || cross(outward, n_next) < 0.0f)
-                outward = dot(outward, n_prev) >= dot(outward, n_next) ? n_prev : n_next;
+            // Under 180 degrees: between the two; at 180 (a segment's end, a flat box's end):
+            // the half-plane turning positively from n_prev to n_next.
+            const bool narrow = cross(n_prev, n_next) > 0.0f;
+            const bool outside = narrow ? (cross(n_prev, outward) < 0.0f || cross(outward, n_next) < 0.0f)
+                                        : cross(n_prev, outward) < 0.0f;
+            if (outside) outward = dot(outward, n_prev) >= dot(outward, n_next) ? n_prev : n_next;
         }
     }
     if (!moving_into(v, -outward)) return {};  // only grazes it
