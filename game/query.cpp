@@ -417,18 +417,23 @@ std::string op_collide(const Json& q) {
     return out.finish();
 }
 
-std::string op_cast(const Json& q) {
-    const Fields fields(q, "cast", {"op", "from", "to", "shape"});
-    const Vec2 from = field_vec2(fields, "from");
-    const Vec2 to = field_vec2(fields, "to");
-    const ParsedShape shape = parse_shape(fields.required("shape"), "shape");
-    const CastHit hit = cast(from, to, shape.shape);
+// A cast's or a sweep's answer: {"hit","t","point","normal"}.
+template <class Contact>
+std::string contact_json(const Contact& hit) {
     ObjectWriter out;
     out.add_bool("hit", hit.hit);
     out.add_number("t", hit.t);
     out.add_vec("point", hit.point);
     out.add_vec("normal", hit.normal);
     return out.finish();
+}
+
+std::string op_cast(const Json& q) {
+    const Fields fields(q, "cast", {"op", "from", "to", "shape"});
+    const Vec2 from = field_vec2(fields, "from");
+    const Vec2 to = field_vec2(fields, "to");
+    const ParsedShape shape = parse_shape(fields.required("shape"), "shape");
+    return contact_json(cast(from, to, shape.shape));
 }
 
 std::string op_sweep(const Json& q) {
@@ -442,13 +447,7 @@ std::string op_sweep(const Json& q) {
     const Vec2 va = field_vec2(fields, "va");
     const ParsedShape b = parse_shape(fields.required("b"), "b");
     const Vec2 vb = field_vec2(fields, "vb");
-    const SweepHit hit = sweep(*circle, va, b.shape, vb);
-    ObjectWriter out;
-    out.add_bool("hit", hit.hit);
-    out.add_number("t", hit.t);
-    out.add_vec("point", hit.point);
-    out.add_vec("normal", hit.normal);
-    return out.finish();
+    return contact_json(sweep(*circle, va, b.shape, vb));
 }
 
 std::string op_closest(const Json& q) {
