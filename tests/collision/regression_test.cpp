@@ -428,3 +428,45 @@ TEST(Regression, CircleBesideAnEdgeGetsTheEdgeNormalExactly) {
     EXPECT_NEAR(k.normal.x, 0.3774f, 1e-3f);
     EXPECT_NEAR(k.normal.y, 0.9260f, 1e-3f);
 }
+
+TEST(Regression, NearAVertexCollideUsesTheVertexDirection) {
+    // A "within rounding" fallback scaled with a 4000 px edge and replaced the vertex direction
+    // by a face normal outside the vertex's cone; the sweep then judged the ball as moving off.
+    const std::vector<Vec2> pts = {{11882.3887f, 6385.18066f}, {13691.5029f, 6744.23193f}, {14449.2148f, 6912.50586f},
+                                   {18220.6484f, 8365.07617f}, {17919.0898f, 8547.9541f},  {15750.7363f, 8680.01562f},
+                                   {5291.66846f, 7392.2417f},  {5151.10742f, 7364.32812f}, {558.558228f, 5312.58496f},
+                                   {811.694153f, 5287.71484f}, {1616.33899f, 5256.30176f}, {4243.49561f, 5366.23877f}};
+    const Polygon p = *make_polygon(pts);
+    const Circle ball{{558.558105f, 5312.58398f}, 0.001f};
+    const Manifold m = collide(p, ball);
+    const Manifold s = collide_sat(p, ball);
+    ASSERT_TRUE(m.hit);
+    EXPECT_NEAR(m.normal.x, s.normal.x, 1e-5f);
+    EXPECT_NEAR(m.normal.y, s.normal.y, 1e-5f);
+    const SweepHit h = sweep(ball, {14383.9316f, -67.0593948f}, p);
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.t, 0.0f);
+}
+
+TEST(Regression, SlidingInFromASegmentsEndIsAContact) {
+    // The ball starts beside the end, at the edge of the face's window, and slides in along the
+    // face: rounding put it just outside the window and the face was never tried.
+    const SweepHit h = sweep(Circle{{-3.99489808f, 4.15536356f}, 0.01f}, {2.50960708f, -1.43823695f},
+                             Segment{{0.214109972f, 1.73728168f}, {-3.99986172f, 4.14668226f}});
+    ASSERT_TRUE(h.hit);
+    EXPECT_LT(h.t, 1e-4f);
+    EXPECT_NEAR(h.normal.x, -0.496359f, 1e-4f);
+    EXPECT_NEAR(h.normal.y, -0.868117f, 1e-4f);
+}
+
+TEST(Regression, AThinBoxCornerHitKeepsTheCornerDirection) {
+    // The two corners of a 2e-7 px end tie by rounding; the other one won and its cone clamped
+    // the true direction to the end face's normal, with the contact point 0.8 px off the box.
+    const SweepHit h = sweep(Circle{{10, 3}, 1}, {-6, -3}, Obb{{0, 0}, {5, 1e-7f}, 0});
+    ASSERT_TRUE(h.hit);
+    EXPECT_NEAR(h.t, 0.7333333f, 1e-6f);
+    EXPECT_NEAR(h.normal.x, -0.6f, 1e-5f);
+    EXPECT_NEAR(h.normal.y, -0.8f, 1e-5f);
+    EXPECT_NEAR(h.point.x, 5.0f, 1e-5f);
+    EXPECT_NEAR(h.point.y, 0.0f, 1e-5f);
+}

@@ -45,14 +45,16 @@ Manifold collide(const Polygon& a, const Circle& b) {
     const Vec2 p1 = a.points[(max_edge + 1) % a.count];
     const Vec2 e = p1 - p0;
     if (dot(c - p0, e) > 0.0f && dot(c - p1, e) < 0.0f) return hit_with(b.radius - max_sep, a.normals[max_edge]);
-    // Otherwise the nearest feature is a vertex: the direction from it to the centre.
-    int edge = 0;
-    const Vec2 d = detail::offset_from_boundary(a, c, &edge);  // c - p, relative for precision
-    if (!(dot(d, d) <= b.radius * b.radius)) return {};
-    const float dist = length(d);
-    // On the vertex up to rounding, c - p is noise: the face the centre is outside of.
-    const float rounding = 16.0f * FLT_EPSILON * (length(c - p0) + length(e));
-    return hit_with(b.radius - dist, dist <= rounding ? a.normals[max_edge] : normalize_or(d, a.normals[max_edge]));
+    // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
+    // plain difference of points (exact for nearby floats).
+    Vec2 d{};
+    float dist2 = INFINITY;
+    for (int i = 0; i < a.count; ++i) {
+        const Vec2 o = c - a.points[i];
+        if (dot(o, o) < dist2) { dist2 = dot(o, o); d = o; }
+    }
+    if (!(dist2 <= b.radius * b.radius)) return {};
+    return hit_with(b.radius - std::sqrt(dist2), normalize_or(d, a.normals[max_edge]));
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {

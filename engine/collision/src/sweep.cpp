@@ -116,8 +116,12 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
         if (gap < -16.0f * FLT_EPSILON * (length(f) + std::sqrt(ee) + r)) continue;
         const float t = gap > 0.0f ? gap / closing : 0.0f;
         if (!(t <= 1.0f) || !(t < best_t)) continue;
-        const float along = dot(f + t * v, e);
-        if (along >= 0.0f && along <= ee) {
+        // The window, with room for rounding: a ball sliding in along a face from exactly its
+        // end projects just outside it as often as just inside.
+        const Vec2 q = f + t * v;
+        const float along = dot(q, e);
+        const float slack = 16.0f * FLT_EPSILON * (length(q) + std::sqrt(ee)) * std::sqrt(ee);
+        if (along >= -slack && along <= ee + slack) {
             best_t = t;
             outward = n;
             vertex = -1;
@@ -135,27 +139,46 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
     }
     if (best_t == INFINITY) return {};
     if (vertex >= 0) {
-        // Kept inside the vertex's cone of normals, between the normals of the nearest faces
-        // of non-zero length before and after it: a vertex hit that rounding let win over an
-        // adjacent face's (equal) time gets that face's exact normal. A cone of 180 degrees or
-        // more (a segment's end, a flat or point-sized box) needs no clamp.
-        int prev = -1, next = -1;
-        for (int k = 1; k <= count && prev < 0; ++k) {
-            const int i = (vertex + count - k) % count;
-            if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) prev = i;
-        }
-        for (int k = 0; k < count && next < 0; ++k) {
-            const int i = (vertex + k) % count;
-            if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) next = i;
-        }
-        if (prev >= 0 && next >= 0) {
-            const Vec2 n_prev = normals[prev], n_next = normals[next];
-            // Under 180 degrees: between the two; at 180 (a segment's end, a flat box's end):
-            // the half-plane turning positively from n_prev to n_next.
-            const bool narrow = cross(n_prev, n_next) > 0.0f;
-            const bool outside = narrow ? (cross(n_prev, outward) < 0.0f || cross(outward, n_next) < 0.0f)
-                                        : cross(n_prev, outward) < 0.0f;
-            if (outside) outward = dot(outward, n_prev) >= dot(outward, n_next) ? n_prev : n_next;
+        // A vertex's contact direction must lie in its cone of normals, between the normals of
+        // the nearest faces of non-zero length before and after it (a cone of 180 degrees --
+        // a segment's end, a flat box's end -- is the half-plane turning positively from one
+        // to the other; a point-sized box has none). Outside it, rounding let this vertex win
+        // a tie: with the neighbour across a tiny face (a thin box's other corner), whose cone
+        // holds the direction, or with an adjacent face, whose exact normal it then takes.
+        auto cone_bounds = [&](int vtx, Vec2& n_prev, Vec2& n_next) {
+            int prev = -1, next = -1;
+            for (int k = 1; k <= count && prev < 0; ++k) {
+                const int i = (vtx + count - k) % count;
+                if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) prev = i;
+            }
+            for (int k = 0; k < count && next < 0; ++k) {
+                const int i = (vtx + k) % count;
+                if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) next = i;
+            }
+            if (prev < 0 || next < 0) return false;
+            n_prev = normals[prev];
+            n_next = normals[next];
+            return true;
+        };
+        auto outside_cone = [&](int vtx, Vec2 out) {
+            Vec2 n_prev, n_next;
+            if (!cone_bounds(vtx, n_prev, n_next)) return false;
+            if (cross(n_prev, n_next) > 0.0f) return cross(n_prev, out) < 0.0f || cross(out, n_next) < 0.0f;
+            return cross(n_prev, out) < 0.0f;
+        };
+        if (outside_cone(vertex, outward)) {
+            bool moved = false;
+            for (const int nb : {(vertex + count - 1) % count, (vertex + 1) % count}) {
+                const detail::CircleContact c = detail::first_contact_with_circle(points[nb] - from, v, r);
+                if (c.hit && c.t <= best_t + 1e-5f * (1.0f + best_t) && !outside_cone(nb, c.outward)) {
+                    outward = c.outward;
+                    moved = true;
+                    break;
+                }
+            }
+            Vec2 n_prev, n_next;
+            if (!moved && cone_bounds(vertex, n_prev, n_next))
+                outward = dot(outward, n_prev) >= dot(outward, n_next) ? n_prev : n_next;
         }
     }
     if (!moving_into(v, -outward)) return {};  // only grazes it
