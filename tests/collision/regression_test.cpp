@@ -470,3 +470,37 @@ TEST(Regression, AThinBoxCornerHitKeepsTheCornerDirection) {
     EXPECT_NEAR(h.point.x, 5.0f, 1e-5f);
     EXPECT_NEAR(h.point.y, 0.0f, 1e-5f);
 }
+
+TEST(Regression, ACentreOnAVertexUpToRoundingKeepsAConeNormal) {
+    // One float step off a vertex, c - v pointed outside the vertex's cone of normals; the sweep
+    // took it as the start normal, judged the ball as moving off, and it passed through.
+    const Polygon tri = poly({{3000, -13000}, {3700, -13020}, {-7800, -4900}});
+    const Circle ball{{2999.99976f, -13000}, 1};
+    const Manifold m = collide(tri, ball);
+    ASSERT_TRUE(m.hit);
+    EXPECT_LT(m.normal.y, -0.5f);  // out of the triangle's top-left face, not sideways
+    const SweepHit h = sweep(ball, {0, 1000}, tri);
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.t, 0.0f);
+}
+
+TEST(Regression, AFaceHitPastTheCornerIsTheCorner) {
+    // The window's rounding room (0.04 px at 1e4) let a face claim a contact past its end: the
+    // face's normal, 0.6 rad off, where the ball really meets the corner.
+    const SweepHit h = sweep(Circle{{10000.0303f, -10}, 0.05f}, {0, 20}, Aabb{{0, 0}, {10000, 10000}});
+    ASSERT_TRUE(h.hit);
+    EXPECT_NEAR(h.t, 0.49801f, 2e-5f);
+    EXPECT_NEAR(h.normal.x, -0.605f, 0.01f);
+    EXPECT_NEAR(h.normal.y, 0.796f, 0.01f);
+}
+
+TEST(Regression, AShallowSlidePastAVertexStopsAtFirstContact) {
+    // Neither face window (in float) nor the vertex caught the contact, so only the centre's
+    // own entry stopped the ball, a whole radius deep.
+    const Polygon p = poly({{10.0814276f, -8.33654308f}, {12.54391f, -5.91474104f}, {13.6303129f, -4.54039526f},
+                            {5.03506899f, -8.73993969f}, {4.95684433f, -8.88366032f}, {4.53730726f, -9.9413805f},
+                            {4.49588156f, -10.2197199f}});
+    const SweepHit h = sweep(Circle{{18.0141792f, -5.67022753f}, 0.001f}, {-18.434288f, -6.19848919f}, p);
+    ASSERT_TRUE(h.hit);
+    EXPECT_NEAR(h.t, 0.430308f, 1e-4f);
+}

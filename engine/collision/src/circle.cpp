@@ -49,12 +49,19 @@ Manifold collide(const Polygon& a, const Circle& b) {
     // plain difference of points (exact for nearby floats).
     Vec2 d{};
     float dist2 = INFINITY;
+    int vertex = 0;
     for (int i = 0; i < a.count; ++i) {
         const Vec2 o = c - a.points[i];
-        if (dot(o, o) < dist2) { dist2 = dot(o, o); d = o; }
+        if (dot(o, o) < dist2) { dist2 = dot(o, o); d = o; vertex = i; }
     }
     if (!(dist2 <= b.radius * b.radius)) return {};
-    return hit_with(b.radius - std::sqrt(dist2), normalize_or(d, a.normals[max_edge]));
+    // A direction outside the vertex's cone of normals means the centre is on the vertex up
+    // to rounding: the nearer of its two faces' normals.
+    const Vec2 n_prev = a.normals[(vertex + a.count - 1) % a.count];
+    const Vec2 n_next = a.normals[vertex];
+    Vec2 n = normalize_or(d, a.normals[max_edge]);
+    if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) n = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
+    return hit_with(b.radius - std::sqrt(dist2), n);
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {

@@ -102,6 +102,7 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
     float best_t = entry.hit ? entry.t : INFINITY;
     Vec2 outward = entry.normal;
     int vertex = -1;
+    int beyond_end = -1;  // the vertex past which a face hit lies, if only rounding let it in
     for (int i = 0; i < count; ++i) {
         const Vec2 n = normals[i];
         const Vec2 e = points[(i + 1) % count] - points[i];
@@ -125,7 +126,23 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
             best_t = t;
             outward = n;
             vertex = -1;
+            beyond_end = along < 0.0f ? i : (along > ee ? (i + 1) % count : -1);
+            continue;
         }
+        // Beside the window, the band within r of the face can still be entered across the
+        // window's end. In exact arithmetic the end's vertex circle is met first; when rounding
+        // makes that a near-miss, the crossing itself bounds the contact.
+        const float toward = along < 0.0f ? dot(v, e) : -dot(v, e);
+        if (!(toward > 0.0f)) continue;
+        const float t_end = along < 0.0f ? -dot(f, e) / dot(v, e) : (ee - dot(f, e)) / dot(v, e);
+        if (!(t_end >= t && t_end <= 1.0f && t_end < best_t)) continue;
+        const float height = dot(n, f + t_end * v);  // above the face's line at the window's end
+        if (!(height >= 0.0f && height <= r)) continue;  // not in the band there
+        const int end = along < 0.0f ? i : (i + 1) % count;
+        best_t = t_end;
+        outward = normalize_or((from - points[end]) + t_end * v, n);
+        vertex = end;
+        beyond_end = -1;
     }
     if (r > 0.0f) {
         for (int i = 0; i < count; ++i) {
@@ -134,6 +151,17 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
                 best_t = c.t;
                 outward = c.outward;
                 vertex = i;
+                beyond_end = -1;
+            }
+        }
+        // A face hit just past the face's end (let in by the window's rounding room) is that
+        // end's vertex when the ball does meet its circle: the corner is the real contact.
+        if (beyond_end >= 0) {
+            const detail::CircleContact c = detail::first_contact_with_circle(points[beyond_end] - from, v, r);
+            if (c.hit) {
+                best_t = c.t;
+                outward = c.outward;
+                vertex = beyond_end;
             }
         }
     }
