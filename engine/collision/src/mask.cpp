@@ -377,7 +377,20 @@ struct Bounds {
 };
 
 // A convex solid shape (Aabb, Obb, Polygon) as closed half-planes n.p <= c.
-struct ConvexRegion {
+// Where a region is, for every kind: its bounds and its centre (the tie rule's "B's centre").
+struct RegionPlace {
+    Bounds bounds;
+    double centre_x = 0.0;
+    double centre_y = 0.0;
+};
+
+// A solid region also knows where its vertical chords end at the top and bottom.
+struct SolidRegionPlace : RegionPlace {
+    double top_x = 0.0;
+    double bottom_x = 0.0;
+};
+
+struct ConvexRegion : SolidRegionPlace {
     static constexpr bool kSolid = true;
     static constexpr double kNear = 0.5;
     static constexpr double kFar = 0.5;
@@ -385,11 +398,6 @@ struct ConvexRegion {
     std::array<double, kMaxPolygonVertices> nx{};
     std::array<double, kMaxPolygonVertices> ny{};
     std::array<double, kMaxPolygonVertices> c{};
-    Bounds bounds;
-    double centre_x = 0.0;
-    double centre_y = 0.0;
-    double top_x = 0.0;
-    double bottom_x = 0.0;
 
     void add(double px, double py, double pc) {
         nx[static_cast<std::size_t>(count)] = px;
@@ -431,18 +439,13 @@ struct ConvexRegion {
     }
 };
 
-struct DiscRegion {
+struct DiscRegion : SolidRegionPlace {
     static constexpr bool kSolid = true;
     static constexpr double kNear = 0.5;
     static constexpr double kFar = 0.5;
     double cx = 0.0;
     double cy = 0.0;
     double r = 0.0;
-    Bounds bounds;
-    double centre_x = 0.0;
-    double centre_y = 0.0;
-    double top_x = 0.0;
-    double bottom_x = 0.0;
 
     bool meets(double left, double top) const {
         const double dx = left + 0.5 - cx;
@@ -471,7 +474,7 @@ struct DiscRegion {
 
 // A segment meets a pixel when it touches the pixel's closed square: SAT with the axes x, y
 // and the segment's normal (the square's corners not all strictly on one side).
-struct SegmentRegion {
+struct SegmentRegion : RegionPlace {
     static constexpr bool kSolid = false;
     static constexpr double kNear = 0.0;
     static constexpr double kFar = 1.0;
@@ -479,9 +482,6 @@ struct SegmentRegion {
     double ay = 0.0;
     double bx = 0.0;
     double by = 0.0;
-    Bounds bounds;
-    double centre_x = 0.0;
-    double centre_y = 0.0;
 
     bool meets(double left, double top) const {
         if (bounds.max_x < left || bounds.min_x > left + 1.0 || bounds.max_y < top || bounds.min_y > top + 1.0)
