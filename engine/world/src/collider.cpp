@@ -1,0 +1,125 @@
+// Colliders: shapes in an entity's frame, and placing them at the entity's transform.
+// Also the names of body kinds and event types.
+#include <cmath>
+#include <limits>
+
+#include "jostle/world.h"
+
+namespace jostle {
+
+namespace {
+
+// A shape the collision module treats as invalid: it meets nothing.
+Shape nowhere() {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    return Circle{{nan, nan}, 0.0f};
+}
+
+// The nearest whole pixel, for a mask's placement; bounded so the conversion is defined
+// (far-away masks answer "miss" in the collision module anyway).
+int nearest_pixel(float v) {
+    const double r = std::floor(static_cast<double>(v) + 0.5);
+    return static_cast<int>(std::fmax(-1e9, std::fmin(1e9, r)));
+}
+
+// position + offset without int overflow.
+int add_offset(int position, int offset) {
+    const long long sum = static_cast<long long>(position) + offset;
+    return static_cast<int>(sum < -2000000000LL ? -2000000000LL : (sum > 2000000000LL ? 2000000000LL : sum));
+}
+
+}  // namespace
+
+Collider Collider::aabb(Vec2 half_size, Vec2 offset) {
+    Collider c;
+    c.shape_ = Aabb{offset - half_size, offset + half_size};
+    return c;
+}
+
+Collider Collider::box(Vec2 half_size, Vec2 offset, float angle) {
+    Collider c;
+    c.shape_ = Obb{offset, half_size, angle};
+    return c;
+}
+
+Collider Collider::circle(float radius, Vec2 offset) {
+    Collider c;
+    c.shape_ = Circle{offset, radius};
+    return c;
+}
+
+Collider Collider::polygon(const Polygon& poly) {
+    Collider c;
+    c.shape_ = poly;
+    return c;
+}
+
+Collider Collider::segment(Vec2 a, Vec2 b) {
+    Collider c;
+    c.shape_ = Segment{a, b};
+    return c;
+}
+
+Collider Collider::mask(std::shared_ptr<const Mask> mask) {
+    const int w = mask ? mask->width() : 0;
+    const int h = mask ? mask->height() : 0;
+    return Collider::mask(std::move(mask), -(w / 2), -(h / 2));
+}
+
+Collider Collider::mask(std::shared_ptr<const Mask> mask, int offset_x, int offset_y) {
+    Collider c;
+    c.shape_ = PlacedMask{mask.get(), offset_x, offset_y};
+    c.mask_ = std::move(mask);
+    return c;
+}
+
+Shape Collider::placed(Vec2 position, float angle) const {
+    if (!is_finite(position) || !std::isfinite(angle)) return nowhere();
+    const Rot q = Rot::from_angle(angle);
+    const Transform xf{position, q};
+    struct Place {
+        const Transform& xf;
+        float angle;
+        Shape operator()(const Aabb& b) const { return Aabb{b.min + xf.p, b.max + xf.p}; }
+        Shape operator()(const Obb& b) const { return Obb{apply(xf, b.center), b.half, b.angle + angle}; }
+        Shape operator()(const Circle& c) const { return Circle{apply(xf, c.center), c.radius}; }
+        Shape operator()(const Segment& s) const { return Segment{apply(xf, s.a), apply(xf, s.b)}; }
+        Shape operator()(const Polygon& p) const {
+            // A rotation keeps convexity and winding, so the polygon stays valid as it is.
+            Polygon out = p;
+            for (int i = 0; i < p.count && i < kMaxPolygonVertices; ++i) {
+                out.points[i] = apply(xf, p.points[i]);
+                out.normals[i] = rotate(xf.q, p.normals[i]);
+            }
+            return out;
+        }
+        Shape operator()(const PlacedMask& m) const {
+            return PlacedMask{m.mask, add_offset(nearest_pixel(xf.p.x), m.x), add_offset(nearest_pixel(xf.p.y), m.y)};
+        }
+    };
+    return std::visit(Place{xf, angle}, shape_);
+}
+
+const char* name_of(BodyKind k) {
+    switch (k) {
+        case BodyKind::static_body: return "static";
+        case BodyKind::kinematic: return "kinematic";
+        case BodyKind::dynamic: return "dynamic";
+        case BodyKind::bullet: return "bullet";
+        case BodyKind::trigger: return "trigger";
+    }
+    return "?";
+}
+
+const char* name_of(EventType t) {
+    switch (t) {
+        case EventType::contact_begin: return "contact_begin";
+        case EventType::contact_end: return "contact_end";
+        case EventType::trigger_enter: return "trigger_enter";
+        case EventType::trigger_exit: return "trigger_exit";
+        case EventType::bullet_hit: return "bullet_hit";
+    }
+    return "?";
+}
+
+}  // namespace jostle

@@ -1,0 +1,172 @@
+// The sweeps phase: continuous collision. Bullets move as segment casts from their last to
+// their next position; fast dynamic circles are swept (time of first contact) and stop at
+// the first contact instead of passing through. See the MANUAL in jostle/world.h.
+#include <algorithm>
+#include <cmath>
+
+#include "internal.h"
+
+namespace jostle {
+
+using detail::Slot;
+
+namespace {
+
+// Bullets and fast circles meet everything but bullets and triggers.
+bool blocks(const EntityDesc& b) { return b.kind != BodyKind::bullet && b.kind != BodyKind::trigger; }
+
+Aabb segment_bounds(Vec2 a, Vec2 b) { return {min(a, b), max(a, b)}; }
+
+// How far a ricocheting bullet is set off the surface it hit, so the rest of its path (and
+// the next step's) does not start on that surface: more than a float step at its coordinates.
+float lift_off(Vec2 p, float slop) { return slop + 1e-6f * std::fmax(std::fabs(p.x), std::fabs(p.y)); }
+
+}  // namespace
+
+void World::Impl::bounce(std::uint32_t a, std::uint32_t b, Vec2 n) {
+    EntityDesc& ba = slots[a].body;
+    EntityDesc& bb = slots[b].body;
+    const float ima = detail::resolution_inverse_mass(ba);
+    const float imb = detail::resolution_inverse_mass(bb);
+    const float k = ima + imb;
+    if (!(k > 0.0f)) return;
+    const float vn = dot(bb.velocity - ba.velocity, n);
+    if (!(vn < 0.0f)) return;
+    const float e = std::fmax(std::isfinite(ba.restitution) ? ba.restitution : 0.0f,
+                              std::isfinite(bb.restitution) ? bb.restitution : 0.0f);
+    const float target = vn < -desc.restitution_threshold ? -std::fmax(e, 0.0f) * vn : 0.0f;
+    const float jn = (target - vn) / k;
+    ba.velocity -= (ima * jn) * n;
+    bb.velocity += (imb * jn) * n;
+    const Vec2 t = perp(n);
+    const float mu = std::sqrt(std::fmax(ba.friction, 0.0f) * std::fmax(bb.friction, 0.0f));
+    const float limit = std::isfinite(mu) ? mu * jn : 0.0f;
+    const float jt = std::clamp(-dot(bb.velocity - ba.velocity, t) / k, -limit, limit);
+    ba.velocity -= (ima * jt) * t;
+    bb.velocity += (imb * jt) * t;
+}
+
+void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
+    const auto n_slots = static_cast<std::uint32_t>(slots.size());
+
+    // Bullets, in id order.
+    for (std::uint32_t i = 0; i < n_slots; ++i) {
+        if (!slots[i].alive || slots[i].body.kind != BodyKind::bullet) continue;
+        const EntityId id = id_of(i);
+        Vec2 from = slots[i].body.position;
+        Vec2 velocity = slots[i].body.velocity;
+        float done = 0.0f;  // fraction of the step's path already travelled
+        std::uint32_t last_hit = n_slots;  // none
+        bool despawned = false;
+        for (int hits = 0;; ++hits) {
+            const Vec2 to = from + ((1.0f - done) * dt) * velocity;
+            paths.push_back({id, from, to, 0.0f});
+            if (!is_finite(to) || !is_finite(from)) {
+                slots[i].body.position = to;
+                break;
+            }
+            const EntityDesc& me = slots[i].body;
+            std::uint32_t best = n_slots;
+            CastHit best_hit;
+            broadphase.query(segment_bounds(from, to), [&](std::uint32_t j) {
+                if (j == i || !blocks(slots[j].body) || !detail::may_meet(me, id, slots[j].body, id_of(j))) return;
+                const CastHit h = cast(from, to, placed(j));
+                if (!h.hit || (j == last_hit && h.t == 0.0f)) return;
+                if (best == n_slots || h.t < best_hit.t || (h.t == best_hit.t && j < best)) {
+                    best = j;
+                    best_hit = h;
+                }
+            });
+            if (best == n_slots) {
+                slots[i].body.position = to;
+                break;
+            }
+            paths.back().to = best_hit.point;
+            Event e;
+            e.type = EventType::bullet_hit;
+            e.a = id;
+            e.b = id_of(best);
+            e.a_user_data = me.user_data;
+            e.b_user_data = slots[best].body.user_data;
+            e.point = best_hit.point;
+            e.normal = best_hit.normal;
+            e.fraction = std::fmin(done + best_hit.t * (1.0f - done), 1.0f);
+            events.push_back(e);
+            const bool reflectable = best_hit.normal.x != 0.0f || best_hit.normal.y != 0.0f;
+            if (me.on_hit == BulletResponse::despawn) {
+                remove(i);
+                despawned = true;
+                break;
+            }
+            if (me.on_hit == BulletResponse::stop || !reflectable) {
+                slots[i].body.position = best_hit.point;
+                slots[i].body.velocity = {};
+                break;
+            }
+            // Ricochet: mirror the velocity in the surface and go on with the rest of the path.
+            const Vec2 n = best_hit.normal;
+            velocity = velocity - (2.0f * dot(velocity, n)) * n;
+            slots[i].body.velocity = velocity;
+            from = best_hit.point + lift_off(best_hit.point, desc.slop) * n;
+            done = e.fraction;
+            last_hit = best;
+            if (hits + 1 >= desc.max_sweep_hits || done >= 1.0f) {
+                slots[i].body.position = from;
+                break;
+            }
+        }
+        if (!despawned) sync_proxy(i, slots[i].body.position - paths.back().from);
+    }
+
+    // Fast circles, in id order: each against everything at its current (resolved) place.
+    for (std::uint32_t i = 0; i < n_slots; ++i) {
+        Slot& s = slots[i];
+        if (!s.alive || !s.fast) continue;
+        const EntityId id = id_of(i);
+        const Vec2 start = s.body.position;
+        float remaining = 1.0f;  // fraction of the step still to move
+        for (int hits = 0; hits < desc.max_sweep_hits && remaining > 0.0f; ++hits) {
+            const Shape shape = placed(i);
+            const Circle* circle = std::get_if<Circle>(&shape);
+            const Vec2 motion = (remaining * dt) * s.body.velocity;
+            if (circle == nullptr || !is_finite(motion)) {
+                s.body.position += motion;
+                break;
+            }
+            const Aabb from_box = bounds(*circle);
+            const Aabb to_box = bounds(Circle{circle->center + motion, circle->radius});
+            std::uint32_t best = n_slots;
+            SweepHit best_hit;
+            broadphase.query(Aabb{min(from_box.min, to_box.min), max(from_box.max, to_box.max)}, [&](std::uint32_t j) {
+                if (j == i || !blocks(slots[j].body) || !detail::may_meet(s.body, id, slots[j].body, id_of(j))) return;
+                const SweepHit h = sweep(*circle, motion, placed(j), Vec2{});
+                if (!h.hit) return;
+                if (best == n_slots || h.t < best_hit.t || (h.t == best_hit.t && j < best)) {
+                    best = j;
+                    best_hit = h;
+                }
+            });
+            if (best == n_slots) {
+                s.body.position += motion;
+                break;
+            }
+            s.body.position += best_hit.t * motion;
+            remaining *= 1.0f - best_hit.t;
+            const EntityId other = id_of(best);
+            if (i < best) {
+                touching.push_back({id, other, best_hit.point, best_hit.normal, 0.0f, false});
+            } else {
+                touching.push_back({other, id, best_hit.point, -best_hit.normal, 0.0f, false});
+            }
+            bounce(i, best, best_hit.normal);
+        }
+        // Motion left after max_sweep_hits contacts is dropped: stopping is safe, guessing is not.
+        const Shape end = placed(i);
+        const float radius = std::holds_alternative<Circle>(end) ? std::get<Circle>(end).radius : 0.0f;
+        const Vec2 offset = std::holds_alternative<Circle>(end) ? std::get<Circle>(end).center - s.body.position : Vec2{};
+        paths.push_back({id, start + offset, s.body.position + offset, radius});
+        sync_proxy(i, s.body.position - start);
+    }
+}
+
+}  // namespace jostle

@@ -1,0 +1,88 @@
+// The world's private state, shared by the files that implement World: world.cpp (entities),
+// step.cpp (the step's phases), continuous.cpp (bullets and fast circles), queries.cpp and
+// state_hash.cpp.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "broadphase.h"
+#include "jostle/world.h"
+
+namespace jostle {
+
+namespace detail {
+
+struct Slot {
+    EntityDesc body;
+    std::uint32_t generation = 0;  // the live entity's, or the last one's when free
+    bool alive = false;
+    int proxy = -1;                // broadphase proxy, -1 when the collider meets nothing
+    std::uint64_t mask_fingerprint = 0;  // hash of the mask's pixels (0: no mask)
+    bool fast = false;             // this step: a dynamic circle left for the sweeps phase
+    Vec2 friction_dv;              // this step: velocity change from friction impulses
+};
+
+// A candidate or touching pair; a.index < b.index.
+struct Pair {
+    std::uint32_t a = 0;
+    std::uint32_t b = 0;
+};
+
+// The point where two placed shapes meet, given their manifold (contact_point.cpp).
+Vec2 contact_point(const Shape& a, const Shape& b, const Manifold& m);
+
+// Inverse mass as resolution sees it: 0 for everything that is not a dynamic body.
+float resolution_inverse_mass(const EntityDesc& body);
+bool is_moving_kind(BodyKind k);  // kinematic, dynamic, trigger
+// Layer bits, `ignore`, and the kinds that never meet (see the MANUAL).
+bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id);
+
+}  // namespace detail
+
+struct World::Impl {
+    WorldDesc desc;
+    std::vector<detail::Slot> slots;
+    std::vector<std::uint32_t> free_slots;  // reused last-in first-out
+    std::size_t live = 0;
+    detail::Broadphase broadphase;
+    std::vector<Contact> contacts;          // after the last step, sorted by (a, b)
+    std::vector<Event> events;
+    std::vector<SweptPath> paths;
+    EventHandler handler;
+    Rng rng;
+    std::uint64_t steps = 0;
+    bool in_step = false;
+
+    explicit Impl(const WorldDesc& d) : desc(d), rng(d.seed) {}
+
+    detail::Slot* find(EntityId id);
+    const detail::Slot* find(EntityId id) const;
+    EntityId id_of(std::uint32_t index) const { return {index, slots[index].generation}; }
+    Shape placed(std::uint32_t index) const;
+    // Brings slot index's proxy up to date with its placed collider (creating or dropping
+    // it when the bounds become usable or not).
+    void sync_proxy(std::uint32_t index, Vec2 displacement = {});
+    void remove(std::uint32_t index);  // destroy: free the slot, drop its contacts
+
+    // The phases of step(), in order (step.cpp, continuous.cpp).
+    void integrate(float dt);
+    std::vector<detail::Pair> broadphase_pairs();
+    struct NarrowContact {
+        detail::Pair pair;
+        Manifold manifold;  // at the narrowphase, A = pair.a
+        bool trigger = false;
+        bool resolvable = false;  // a dynamic body with inverse mass > 0 and no trigger
+    };
+    std::vector<NarrowContact> narrowphase(const std::vector<detail::Pair>& pairs);
+    void resolve(const std::vector<NarrowContact>& contacts, float dt);
+    // Appends the contacts fast circles stopped on to `touching`, and bullet hits to events.
+    void sweeps(float dt, std::vector<Contact>& touching);
+    void emit_events(std::vector<Contact> touching);
+
+    // A single contact's velocity response (impulse with restitution and friction), used by
+    // the sweeps; returns nothing, changes the velocities of dynamic bodies.
+    void bounce(std::uint32_t a, std::uint32_t b, Vec2 normal);
+};
+
+}  // namespace jostle

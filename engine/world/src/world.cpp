@@ -1,0 +1,219 @@
+// World: creating, finding, changing and destroying entities; the fixed-step driver.
+// The step itself is in step.cpp and continuous.cpp.
+#include <algorithm>
+#include <cmath>
+
+#include "internal.h"
+#include "jostle/core/error.h"
+#include "jostle/core/hash.h"
+
+namespace jostle {
+
+namespace detail {
+
+float resolution_inverse_mass(const EntityDesc& body) {
+    if (body.kind != BodyKind::dynamic) return 0.0f;
+    const float im = body.inverse_mass;
+    return (std::isfinite(im) && im > 0.0f) ? im : 0.0f;
+}
+
+bool is_moving_kind(BodyKind k) {
+    return k == BodyKind::kinematic || k == BodyKind::dynamic || k == BodyKind::trigger;
+}
+
+bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id) {
+    if ((a.layer & b.collides_with) == 0 || (b.layer & a.collides_with) == 0) return false;
+    if (a.ignore == b_id || b.ignore == a_id) return false;
+    return true;
+}
+
+}  // namespace detail
+
+namespace {
+
+std::uint64_t fingerprint(const Collider& c) {
+    const Mask* m = c.mask_ptr().get();
+    if (m == nullptr) return 0;
+    Hasher h;
+    h.u32(static_cast<std::uint32_t>(m->width()));
+    h.u32(static_cast<std::uint32_t>(m->height()));
+    for (int y = 0; y < m->height(); ++y) {
+        h.bytes(m->row(y), static_cast<std::size_t>(m->words_per_row()) * sizeof(std::uint64_t));
+    }
+    return h.value();
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// Impl helpers
+// ---------------------------------------------------------------------------------------
+
+detail::Slot* World::Impl::find(EntityId id) {
+    if (id.generation == 0 || id.index >= slots.size()) return nullptr;
+    detail::Slot& s = slots[id.index];
+    return (s.alive && s.generation == id.generation) ? &s : nullptr;
+}
+
+const detail::Slot* World::Impl::find(EntityId id) const {
+    return const_cast<World::Impl*>(this)->find(id);
+}
+
+Shape World::Impl::placed(std::uint32_t index) const {
+    const EntityDesc& b = slots[index].body;
+    return b.collider.placed(b.position, b.angle);
+}
+
+void World::Impl::sync_proxy(std::uint32_t index, Vec2 displacement) {
+    detail::Slot& s = slots[index];
+    const Aabb tight = bounds(placed(index));
+    const bool usable = s.alive && detail::Broadphase::usable(tight);
+    if (!usable) {
+        if (s.proxy >= 0) broadphase.destroy(s.proxy);
+        s.proxy = -1;
+    } else if (s.proxy < 0) {
+        s.proxy = broadphase.create(tight, index);
+    } else {
+        broadphase.move(s.proxy, tight, displacement);
+    }
+}
+
+void World::Impl::remove(std::uint32_t index) {
+    detail::Slot& s = slots[index];
+    if (s.proxy >= 0) broadphase.destroy(s.proxy);
+    s.proxy = -1;
+    s.alive = false;
+    const EntityId id{index, s.generation};
+    s.body = EntityDesc{};  // drop the mask share and user data; the slot stays hashed as free
+    s.mask_fingerprint = 0;
+    s.fast = false;
+    s.friction_dv = {};
+    free_slots.push_back(index);
+    --live;
+    std::erase_if(contacts, [&](const Contact& c) { return c.a == id || c.b == id; });
+}
+
+// ---------------------------------------------------------------------------------------
+// World
+// ---------------------------------------------------------------------------------------
+
+World::World(const WorldDesc& desc) : impl_(std::make_unique<Impl>(desc)) {}
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+EntityId World::create(const EntityDesc& desc) {
+    std::uint32_t index;
+    if (!impl_->free_slots.empty()) {
+        index = impl_->free_slots.back();
+        impl_->free_slots.pop_back();
+    } else {
+        JOSTLE_ASSERT(impl_->slots.size() < 0xffffffffu, "too many entities");
+        index = static_cast<std::uint32_t>(impl_->slots.size());
+        impl_->slots.emplace_back();
+    }
+    detail::Slot& s = impl_->slots[index];
+    // Generations count up from 1 and skip 0 (the null id) when they wrap.
+    s.generation = (s.generation == 0xffffffffu) ? 1u : s.generation + 1u;
+    s.alive = true;
+    s.body = desc;
+    s.mask_fingerprint = fingerprint(desc.collider);
+    s.proxy = -1;
+    ++impl_->live;
+    impl_->sync_proxy(index);
+    return {index, s.generation};
+}
+
+bool World::destroy(EntityId id) {
+    if (impl_->find(id) == nullptr) return false;
+    impl_->remove(id.index);
+    return true;
+}
+
+bool World::alive(EntityId id) const { return impl_->find(id) != nullptr; }
+
+const EntityDesc* World::get(EntityId id) const {
+    const detail::Slot* s = impl_->find(id);
+    return s ? &s->body : nullptr;
+}
+
+Shape World::shape_of(EntityId id) const {
+    if (impl_->find(id) == nullptr) return Collider{}.placed({NAN, NAN}, 0.0f);
+    return impl_->placed(id.index);
+}
+
+std::size_t World::entity_count() const { return impl_->live; }
+
+std::vector<EntityId> World::entities() const {
+    std::vector<EntityId> out;
+    out.reserve(impl_->live);
+    for (std::uint32_t i = 0; i < impl_->slots.size(); ++i) {
+        if (impl_->slots[i].alive) out.push_back(impl_->id_of(i));
+    }
+    return out;
+}
+
+namespace {
+template <typename F>
+bool change(World::Impl& impl, EntityId id, F&& f) {
+    detail::Slot* s = impl.find(id);
+    if (s == nullptr) return false;
+    f(*s);
+    impl.sync_proxy(id.index);
+    return true;
+}
+}  // namespace
+
+bool World::set_position(EntityId id, Vec2 position) {
+    return change(*impl_, id, [&](detail::Slot& s) { s.body.position = position; });
+}
+bool World::set_angle(EntityId id, float angle) {
+    return change(*impl_, id, [&](detail::Slot& s) { s.body.angle = angle; });
+}
+bool World::set_velocity(EntityId id, Vec2 velocity) {
+    return change(*impl_, id, [&](detail::Slot& s) { s.body.velocity = velocity; });
+}
+bool World::set_angular_velocity(EntityId id, float angular_velocity) {
+    return change(*impl_, id, [&](detail::Slot& s) { s.body.angular_velocity = angular_velocity; });
+}
+bool World::set_collider(EntityId id, const Collider& collider) {
+    return change(*impl_, id, [&](detail::Slot& s) {
+        s.body.collider = collider;
+        s.mask_fingerprint = fingerprint(collider);
+    });
+}
+bool World::set_user_data(EntityId id, std::uint64_t user_data) {
+    return change(*impl_, id, [&](detail::Slot& s) { s.body.user_data = user_data; });
+}
+bool World::set(EntityId id, const EntityDesc& desc) {
+    return change(*impl_, id, [&](detail::Slot& s) {
+        s.body = desc;
+        s.mask_fingerprint = fingerprint(desc.collider);
+    });
+}
+
+std::span<const Event> World::events() const { return impl_->events; }
+std::span<const Contact> World::contacts() const { return impl_->contacts; }
+std::span<const SweptPath> World::swept_paths() const { return impl_->paths; }
+void World::set_event_handler(EventHandler handler) { impl_->handler = std::move(handler); }
+std::uint64_t World::step_count() const { return impl_->steps; }
+Rng& World::rng() { return impl_->rng; }
+const WorldDesc& World::desc() const { return impl_->desc; }
+
+// ---------------------------------------------------------------------------------------
+// FixedStepper
+// ---------------------------------------------------------------------------------------
+
+int FixedStepper::advance(double elapsed_seconds) {
+    if (std::isfinite(elapsed_seconds) && elapsed_seconds > 0.0) accumulator_ += elapsed_seconds;
+    int steps = 0;
+    while (accumulator_ >= step_ && steps < max_steps_) {
+        accumulator_ -= step_;
+        ++steps;
+    }
+    // Beyond the cap, whole steps are dropped rather than owed to later frames.
+    if (accumulator_ >= step_) accumulator_ = std::fmod(accumulator_, static_cast<double>(step_));
+    return steps;
+}
+
+}  // namespace jostle

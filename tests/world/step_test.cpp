@@ -1,0 +1,69 @@
+// The step's phases seen from outside: a falling box lands on a floor and rests, contact
+// events begin once, and the world's basic bookkeeping (ids, counts, hashes) holds.
+#include <gtest/gtest.h>
+
+#include "jostle/world.h"
+
+using namespace jostle;
+
+namespace {
+
+constexpr float kDt = 1.0f / 60.0f;
+
+EntityDesc floor_desc() {
+    EntityDesc d;
+    d.kind = BodyKind::static_body;
+    d.position = {0.0f, 100.0f};
+    d.collider = Collider::aabb({200.0f, 10.0f});
+    return d;
+}
+
+}  // namespace
+
+TEST(Step, FallingBoxLandsAndRests) {
+    World world(WorldDesc{.gravity = {0.0f, 980.0f}});
+    const EntityId floor = world.create(floor_desc());
+    EntityDesc box;
+    box.kind = BodyKind::dynamic;
+    box.position = {0.0f, 0.0f};
+    box.collider = Collider::aabb({10.0f, 10.0f});
+    const EntityId id = world.create(box);
+    int begins = 0;
+    for (int i = 0; i < 300; ++i) {
+        world.step(kDt);
+        for (const Event& e : world.events()) {
+            if (e.type == EventType::contact_begin) {
+                ++begins;
+                EXPECT_EQ(e.a, floor);
+                EXPECT_EQ(e.b, id);
+                EXPECT_FLOAT_EQ(e.normal.y, -1.0f);
+            }
+        }
+    }
+    EXPECT_EQ(begins, 1);
+    // Resting on the floor's top (y = 90): the box's centre at 80, within the slop.
+    EXPECT_NEAR(world.get(id)->position.y, 80.0f, world.desc().slop);
+    EXPECT_EQ(world.get(floor)->position.y, 100.0f);
+    EXPECT_NEAR(world.get(id)->velocity.y, 0.0f, 20.0f);
+}
+
+TEST(Step, SameCallsSameHash) {
+    const auto run = [] {
+        World world(WorldDesc{.gravity = {0.0f, 980.0f}, .seed = 7});
+        world.create(floor_desc());
+        for (int i = 0; i < 20; ++i) {
+            EntityDesc d;
+            d.kind = BodyKind::dynamic;
+            d.position = {static_cast<float>(i * 7 - 70), static_cast<float>(-i * 25)};
+            d.collider = (i % 2) ? Collider::circle(6.0f) : Collider::box({6.0f, 4.0f}, {}, 0.3f);
+            world.create(d);
+        }
+        std::vector<std::uint64_t> hashes;
+        for (int i = 0; i < 200; ++i) {
+            world.step(kDt);
+            hashes.push_back(world.state_hash());
+        }
+        return hashes;
+    };
+    EXPECT_EQ(run(), run());
+}
