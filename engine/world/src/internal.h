@@ -21,6 +21,7 @@ struct Slot {
     std::uint64_t mask_fingerprint = 0;  // hash of the mask's pixels (0: no mask)
     bool fast = false;             // this step: a dynamic circle left for the sweeps phase
     Vec2 friction_dv;              // this step: velocity change from friction impulses
+    Vec2 start_position;           // this step: the position before integration
 };
 
 // A candidate or touching pair; a.index < b.index.
@@ -37,6 +38,8 @@ float resolution_inverse_mass(const EntityDesc& body);
 bool is_moving_kind(BodyKind k);  // kinematic, dynamic, trigger
 // Layer bits, `ignore`, and the kinds that never meet (see the MANUAL).
 bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id);
+// Resolution moves one of them: no trigger, and at least one body with inverse mass > 0.
+bool resolvable(const EntityDesc& a, const EntityDesc& b);
 
 }  // namespace detail
 
@@ -71,11 +74,15 @@ struct World::Impl {
     struct NarrowContact {
         detail::Pair pair;
         Manifold manifold;  // at the narrowphase, A = pair.a
+        // > 0: a contact kept from the last step whose shapes are now this far apart
+        // (speculative: the velocity solve lets them close the gap, no further).
+        float separation = 0.0f;
         bool trigger = false;
-        bool resolvable = false;  // a dynamic body with inverse mass > 0 and no trigger
     };
     std::vector<NarrowContact> narrowphase(const std::vector<detail::Pair>& pairs);
-    void resolve(const std::vector<NarrowContact>& contacts, float dt);
+    // Pushes act on every candidate pair (`pairs`): a push can make a pair overlap that
+    // did not at the narrowphase.
+    void resolve(const std::vector<NarrowContact>& contacts, const std::vector<detail::Pair>& pairs, float dt);
     // Appends the contacts fast circles stopped on to `touching`, and bullet hits to events.
     void sweeps(float dt, std::vector<Contact>& touching);
     void emit_events(std::vector<Contact> touching);

@@ -57,12 +57,15 @@ void World::step(float dt) {
     std::vector<Contact> touching;
     touching.reserve(found.size());
     for (const Impl::NarrowContact& c : found) {
+        // A kept contact still counts as touching while its gap is within the slop, so
+        // rounding does not make begin/end events flicker.
+        if (c.separation > w.desc.slop) continue;
         const Shape a = w.placed(c.pair.a);
         const Shape b = w.placed(c.pair.b);
         touching.push_back({w.id_of(c.pair.a), w.id_of(c.pair.b), detail::contact_point(a, b, c.manifold),
                             c.manifold.normal, c.manifold.depth, c.trigger});
     }
-    w.resolve(found, dt);
+    w.resolve(found, pairs, dt);
     w.sweeps(dt, touching);
     ++w.steps;
     w.emit_events(std::move(touching));
@@ -83,6 +86,7 @@ void World::Impl::integrate(float dt) {
         Slot& s = slots[i];
         s.fast = false;
         s.friction_dv = {};
+        s.start_position = s.body.position;
         if (!s.alive) continue;
         EntityDesc& b = s.body;
         // Bullets move along their path in the sweeps phase; static bodies never move.
@@ -134,18 +138,40 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
 
 std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vector<Pair>& pairs) {
     std::vector<NarrowContact> found;
+    const auto last_step = [&](EntityId a, EntityId b) -> const Contact* {
+        const auto it = std::lower_bound(contacts.begin(), contacts.end(), std::pair{a, b},
+                                         [](const Contact& c, const std::pair<EntityId, EntityId>& k) {
+                                             return c.a != k.first ? c.a < k.first : c.b < k.second;
+                                         });
+        return (it != contacts.end() && it->a == a && it->b == b) ? &*it : nullptr;
+    };
     for (const Pair& p : pairs) {
         const Shape a = placed(p.a);
         const Shape b = placed(p.b);
-        // Bounds first: cheap, and for masks it is the lecture's first test (09-30).
-        if (!overlaps(bounds(a), bounds(b))) continue;
-        const Manifold m = collide(a, b);
-        if (!m.hit) continue;
         const EntityDesc& ba = slots[p.a].body;
         const EntityDesc& bb = slots[p.b].body;
         const bool trigger = ba.kind == BodyKind::trigger || bb.kind == BodyKind::trigger;
-        const bool movable = detail::resolution_inverse_mass(ba) > 0.0f || detail::resolution_inverse_mass(bb) > 0.0f;
-        found.push_back({p, m, trigger, !trigger && movable});
+        // Bounds first: cheap, and for masks it is the lecture's first test (09-30).
+        const Manifold m = overlaps(bounds(a), bounds(b)) ? collide(a, b) : Manifold{};
+        if (m.hit) {
+            found.push_back({p, m, 0.0f, trigger});
+            continue;
+        }
+        // Bodies that touched last step and now miss by a rounding error (or a small gap)
+        // stay in contact speculatively: B moved back toward A along the last normal by
+        // kSpeculative shows how far apart they are. Without this a resting stack loses a
+        // contact whenever rounding opens a 1e-5 px gap, and the body above falls through
+        // a step of gravity.
+        if (trigger || !detail::resolvable(ba, bb)) continue;
+        const Contact* last = last_step(id_of(p.a), id_of(p.b));
+        if (last == nullptr) continue;
+        constexpr float kSpeculative = 1.0f;  // px
+        const Shape b_back = bb.collider.placed(bb.position - kSpeculative * last->normal, bb.angle);
+        const Manifold back = collide(a, b_back);
+        if (!back.hit) continue;
+        Manifold touching = back;
+        touching.depth = 0.0f;
+        found.push_back({p, touching, std::fmax(kSpeculative - back.depth, 0.0f), false});
     }
     return found;
 }
@@ -159,7 +185,7 @@ namespace {
 struct VelocityContact {
     std::uint32_t a, b;
     Vec2 normal;
-    float target;   // normal speed to reach: 0, or the bounce
+    float target;   // normal speed to reach: 0, a bounce, or closing a speculative gap
     float friction;
     float normal_impulse = 0.0f;   // accumulated, >= 0
     float tangent_impulse = 0.0f;  // accumulated, |.| <= friction * normal_impulse
@@ -167,19 +193,23 @@ struct VelocityContact {
 
 }  // namespace
 
-void World::Impl::resolve(const std::vector<NarrowContact>& found, float dt) {
+void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::vector<Pair>& pairs, float dt) {
     std::vector<const NarrowContact*> contacts_in;
     for (const NarrowContact& c : found) {
-        if (c.resolvable) contacts_in.push_back(&c);
+        if (detail::resolvable(slots[c.pair.a].body, slots[c.pair.b].body)) contacts_in.push_back(&c);
     }
-    if (contacts_in.empty()) return;
+    std::vector<Pair> push_pairs;
+    for (const Pair& p : pairs) {
+        if (detail::resolvable(slots[p.a].body, slots[p.b].body)) push_pairs.push_back(p);
+    }
+    if (push_pairs.empty()) return;
 
     // Distance (in contacts) from something immovable, for the ground-up order of the last
     // passes (shock propagation). Bellman-Ford over the contact list: deterministic.
     constexpr int kUnreached = 1 << 30;
     std::vector<int> level(slots.size(), kUnreached);
-    for (const NarrowContact* c : contacts_in) {
-        for (std::uint32_t i : {c->pair.a, c->pair.b}) {
+    for (const Pair& p : push_pairs) {
+        for (std::uint32_t i : {p.a, p.b}) {
             if (detail::resolution_inverse_mass(slots[i].body) == 0.0f) level[i] = 0;
         }
     }
@@ -192,12 +222,6 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, float dt) {
             if (lb != kUnreached && lb + 1 < la) { la = lb + 1; changed = true; }
         }
     }
-    // Contact indices in id order, and ground-up (stable, so ties stay in id order).
-    std::vector<std::size_t> id_order(contacts_in.size());
-    for (std::size_t k = 0; k < id_order.size(); ++k) id_order[k] = k;
-    std::vector<std::size_t> ground_up = id_order;
-    const auto low_level = [&](std::size_t k) { return std::min(level[contacts_in[k]->pair.a], level[contacts_in[k]->pair.b]); };
-    std::stable_sort(ground_up.begin(), ground_up.end(), [&](std::size_t x, std::size_t y) { return low_level(x) < low_level(y); });
     // Under shock propagation the body nearer the ground stands still for the one above it.
     const auto masses = [&](std::uint32_t a, std::uint32_t b, bool shock) {
         float ima = detail::resolution_inverse_mass(slots[a].body);
@@ -206,6 +230,8 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, float dt) {
         if (shock && level[b] < level[a]) imb = 0.0f;
         return std::pair{ima, imb};
     };
+    // Stable sorts, so ties keep the id order.
+    const auto low_level = [&](std::uint32_t a, std::uint32_t b) { return std::min(level[a], level[b]); };
 
     // Velocity: sequential impulses with accumulated, clamped impulses.
     std::vector<VelocityContact> vcs;
@@ -215,9 +241,18 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, float dt) {
         const EntityDesc& bb = slots[c->pair.b].body;
         const Vec2 n = c->manifold.normal;
         const float vn = dot(bb.velocity - ba.velocity, n);
-        const float target = vn < -desc.restitution_threshold ? -mixed_restitution(ba, bb) * vn : 0.0f;
+        float target = 0.0f;
+        if (c->separation > 0.0f) {
+            target = -c->separation / dt;  // may close the gap in the next step, no more
+        } else if (vn < -desc.restitution_threshold) {
+            target = -mixed_restitution(ba, bb) * vn;
+        }
         vcs.push_back({c->pair.a, c->pair.b, n, target, mixed_friction(ba, bb)});
     }
+    std::vector<VelocityContact*> velocity_ground_up;
+    for (VelocityContact& vc : vcs) velocity_ground_up.push_back(&vc);
+    std::stable_sort(velocity_ground_up.begin(), velocity_ground_up.end(),
+                     [&](const VelocityContact* x, const VelocityContact* y) { return low_level(x->a, x->b) < low_level(y->a, y->b); });
     const auto solve_velocity = [&](VelocityContact& vc, bool shock) {
         const auto [ima, imb] = masses(vc.a, vc.b, shock);
         const float k = ima + imb;
@@ -248,43 +283,69 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, float dt) {
     const int velocity_passes = std::max(desc.velocity_passes, 1);
     for (int pass = 0; pass < velocity_passes; ++pass) {
         // The last pass goes ground up with shock propagation, so a resting stack ends still.
-        const bool shock = pass == velocity_passes - 1 && velocity_passes > 1;
-        for (std::size_t k : shock ? ground_up : id_order) solve_velocity(vcs[k], shock);
-    }
-
-    // What friction took from the tangential velocity is taken from this step's motion too,
-    // so a body held by friction stays put instead of creeping (semi-implicit Euler).
-    for (const NarrowContact* c : contacts_in) {
-        for (std::uint32_t i : {c->pair.a, c->pair.b}) {
-            Slot& s = slots[i];
-            if (s.fast || (s.friction_dv.x == 0.0f && s.friction_dv.y == 0.0f)) continue;
-            s.body.position += dt * s.friction_dv;
-            s.friction_dv = {};  // once per body
+        if (pass == velocity_passes - 1 && velocity_passes > 1) {
+            for (VelocityContact* vc : velocity_ground_up) solve_velocity(*vc, true);
+        } else {
+            for (VelocityContact& vc : vcs) solve_velocity(vc, false);
         }
     }
 
-    // Position: relaxation passes along the MTD, recomputed from the current positions.
+    // A body whose contacts all touched at the start of the step is resting: it moves by
+    // its solved velocity (semi-implicit Euler), so a body held by friction or wedged between
+    // others stays exactly put instead of creeping by what the relaxation passes leave. Other
+    // bodies (landing, hit) keep their motion and the passes push them out; only the
+    // tangential velocity friction removed is taken from their motion.
+    std::vector<char> resting(slots.size(), 0);  // 0 untouched, 1 resting, 2 not
+    for (std::size_t k = 0; k < contacts_in.size(); ++k) {
+        const NarrowContact& c = *contacts_in[k];
+        const Slot& sa = slots[c.pair.a];
+        const Slot& sb = slots[c.pair.b];
+        // How far apart they were at the start of the step, along this contact's normal.
+        const Vec2 moved = (sb.body.position - sb.start_position) - (sa.body.position - sa.start_position);
+        const float apart_before = c.separation - c.manifold.depth - dot(moved, c.manifold.normal);
+        const char state = apart_before <= desc.slop ? 1 : 2;
+        for (std::uint32_t i : {c.pair.a, c.pair.b}) resting[i] = std::max(resting[i], state);
+    }
+    for (const NarrowContact* c : contacts_in) {
+        for (std::uint32_t i : {c->pair.a, c->pair.b}) {
+            Slot& s = slots[i];
+            if (s.fast || detail::resolution_inverse_mass(s.body) == 0.0f || resting[i] == 0) continue;
+            if (resting[i] == 1) {
+                s.body.position = s.start_position + dt * s.body.velocity;
+            } else {
+                s.body.position += dt * s.friction_dv;
+            }
+            resting[i] = 0;  // once per body
+        }
+    }
+
+    // Position: relaxation passes along the MTD, recomputed from the current positions, over
+    // every candidate pair (a push can make a new overlap).
+    std::vector<Pair> push_ground_up = push_pairs;
+    std::stable_sort(push_ground_up.begin(), push_ground_up.end(),
+                     [&](const Pair& x, const Pair& y) { return low_level(x.a, x.b) < low_level(y.a, y.b); });
     const int passes = std::max(desc.relaxation_passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         const bool shock = pass >= passes / 2;
         float deepest = 0.0f;
-        for (std::size_t index : shock ? ground_up : id_order) {
-            const std::uint32_t a = contacts_in[index]->pair.a;
-            const std::uint32_t b = contacts_in[index]->pair.b;
-            const Manifold m = collide(placed(a), placed(b));
+        for (const Pair& p : shock ? push_ground_up : push_pairs) {
+            const Shape a = placed(p.a);
+            const Shape b = placed(p.b);
+            if (!overlaps(bounds(a), bounds(b))) continue;
+            const Manifold m = collide(a, b);
             if (!m.hit || !(m.depth > 0.0f)) continue;
-            const auto [ima, imb] = masses(a, b, shock);
+            const auto [ima, imb] = masses(p.a, p.b, shock);
             const float k = ima + imb;
             if (!(k > 0.0f)) continue;
-            slots[a].body.position -= (m.depth * ima / k) * m.normal;
-            slots[b].body.position += (m.depth * imb / k) * m.normal;
+            slots[p.a].body.position -= (m.depth * ima / k) * m.normal;
+            slots[p.b].body.position += (m.depth * imb / k) * m.normal;
             deepest = std::fmax(deepest, m.depth);
         }
         if (deepest <= 0.5f * desc.slop) break;
     }
-    for (const NarrowContact* c : contacts_in) {
-        sync_proxy(c->pair.a);
-        sync_proxy(c->pair.b);
+    for (const Pair& p : push_pairs) {
+        sync_proxy(p.a);
+        sync_proxy(p.b);
     }
 }
 

@@ -27,6 +27,11 @@ bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId 
     return true;
 }
 
+bool resolvable(const EntityDesc& a, const EntityDesc& b) {
+    if (a.kind == BodyKind::trigger || b.kind == BodyKind::trigger) return false;
+    return resolution_inverse_mass(a) > 0.0f || resolution_inverse_mass(b) > 0.0f;
+}
+
 }  // namespace detail
 
 namespace {
