@@ -30,7 +30,7 @@ void World::Impl::bounce(std::uint32_t a, std::uint32_t b, Vec2 n) {
     const float imb = detail::resolution_inverse_mass(bb);
     const float k = ima + imb;
     if (!(k > 0.0f)) return;
-    const float vn = dot(bb.velocity - ba.velocity, n);
+    const float vn = dot(detail::contact_velocity(bb) - detail::contact_velocity(ba), n);
     if (!(vn < 0.0f)) return;
     const float e = std::fmax(std::isfinite(ba.restitution) ? ba.restitution : 0.0f,
                               std::isfinite(bb.restitution) ? bb.restitution : 0.0f);
@@ -41,7 +41,7 @@ void World::Impl::bounce(std::uint32_t a, std::uint32_t b, Vec2 n) {
     const Vec2 t = perp(n);
     const float mu = std::sqrt(std::fmax(ba.friction, 0.0f) * std::fmax(bb.friction, 0.0f));
     const float limit = std::isfinite(mu) ? mu * jn : 0.0f;
-    const float jt = std::clamp(-dot(bb.velocity - ba.velocity, t) / k, -limit, limit);
+    const float jt = std::clamp(-dot(detail::contact_velocity(bb) - detail::contact_velocity(ba), t) / k, -limit, limit);
     ba.velocity -= (ima * jt) * t;
     bb.velocity += (imb * jt) * t;
 }

@@ -36,6 +36,10 @@ Vec2 contact_point(const Shape& a, const Shape& b, const Manifold& m);
 // Inverse mass as resolution sees it: 0 for everything that is not a dynamic body.
 float resolution_inverse_mass(const EntityDesc& body);
 bool is_moving_kind(BodyKind k);  // kinematic, dynamic, trigger
+// Velocity as contacts see it: a static body's is zero whatever its velocity field holds.
+inline Vec2 contact_velocity(const EntityDesc& body) {
+    return body.kind == BodyKind::static_body ? Vec2{} : body.velocity;
+}
 // Layer bits, `ignore`, and the kinds that never meet (see the MANUAL).
 bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id);
 // Resolution moves one of them: no trigger, and at least one body with inverse mass > 0.

@@ -240,7 +240,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         const EntityDesc& ba = slots[c->pair.a].body;
         const EntityDesc& bb = slots[c->pair.b].body;
         const Vec2 n = c->manifold.normal;
-        const float vn = dot(bb.velocity - ba.velocity, n);
+        const float vn = dot(detail::contact_velocity(bb) - detail::contact_velocity(ba), n);
         float target = 0.0f;
         if (c->separation > 0.0f) {
             target = -c->separation / dt;  // may close the gap in the next step, no more
@@ -260,7 +260,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         Slot& sa = slots[vc.a];
         Slot& sb = slots[vc.b];
         const Vec2 n = vc.normal;
-        const float vn = dot(sb.body.velocity - sa.body.velocity, n);
+        const float vn = dot(detail::contact_velocity(sb.body) - detail::contact_velocity(sa.body), n);
         const float total = std::fmax(vc.normal_impulse + (vc.target - vn) / k, 0.0f);
         const float dn = total - vc.normal_impulse;
         vc.normal_impulse = total;
@@ -268,7 +268,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         sb.body.velocity += (imb * dn) * n;
         // Friction along the tangent, bounded by the normal impulse (Coulomb).
         const Vec2 t = perp(n);
-        const float vt = dot(sb.body.velocity - sa.body.velocity, t);
+        const float vt = dot(detail::contact_velocity(sb.body) - detail::contact_velocity(sa.body), t);
         const float limit = vc.friction * vc.normal_impulse;
         const float total_t = std::clamp(vc.tangent_impulse - vt / k, -limit, limit);
         const float dt_impulse = total_t - vc.tangent_impulse;
@@ -337,8 +337,17 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             const auto [ima, imb] = masses(p.a, p.b, shock);
             const float k = ima + imb;
             if (!(k > 0.0f)) continue;
-            slots[p.a].body.position -= (m.depth * ima / k) * m.normal;
-            slots[p.b].body.position += (m.depth * imb / k) * m.normal;
+            const Vec2 mtd = m.depth * m.normal;  // moves B out of A
+            Vec2 push_a = (ima / k) * mtd;
+            if (std::holds_alternative<PlacedMask>(a) || std::holds_alternative<PlacedMask>(b)) {
+                // Mask MTDs are whole pixels, and so is each body's share of one.
+                const auto whole = [](Vec2 v) { return Vec2{std::floor(v.x + 0.5f), std::floor(v.y + 0.5f)}; };
+                push_a = whole(push_a);
+                slots[p.b].body.position += whole(mtd) - push_a;
+            } else {
+                slots[p.b].body.position += (imb / k) * mtd;
+            }
+            slots[p.a].body.position -= push_a;
             deepest = std::fmax(deepest, m.depth);
         }
         if (deepest <= 0.5f * desc.slop) break;
@@ -394,6 +403,10 @@ void World::Impl::emit_events(std::vector<Contact> touching) {
             ++j;
         }
     }
+    // Trigger events name the trigger first, which can change their order.
+    const auto event_less = [](const Event& x, const Event& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
+    std::stable_sort(exits.begin(), exits.end(), event_less);
+    std::stable_sort(enters.begin(), enters.end(), event_less);
     contacts = std::move(touching);
     for (auto* list : {&ends, &begins, &exits, &enters}) events.insert(events.end(), list->begin(), list->end());
 }

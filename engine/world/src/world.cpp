@@ -211,13 +211,17 @@ const WorldDesc& World::desc() const { return impl_->desc; }
 
 int FixedStepper::advance(double elapsed_seconds) {
     if (std::isfinite(elapsed_seconds) && elapsed_seconds > 0.0) accumulator_ += elapsed_seconds;
+    // A float step is not exactly 1/60: frames of exactly 1/60 s must still give one step
+    // each, so a step is due once the accumulator is within a millionth of it.
+    const double step = step_;
+    const double due = step * (1.0 - 1e-6);
     int steps = 0;
-    while (accumulator_ >= step_ && steps < max_steps_) {
-        accumulator_ -= step_;
+    while (accumulator_ >= due && steps < max_steps_) {
+        accumulator_ = std::fmax(accumulator_ - step, 0.0);
         ++steps;
     }
     // Beyond the cap, whole steps are dropped rather than owed to later frames.
-    if (accumulator_ >= step_) accumulator_ = std::fmod(accumulator_, static_cast<double>(step_));
+    if (accumulator_ >= due) accumulator_ = std::fmod(accumulator_, step);
     return steps;
 }
 

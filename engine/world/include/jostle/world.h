@@ -21,7 +21,8 @@
 //   sits at the entity's position plus its offset, rounded to the nearest whole pixel.
 //
 // BODY KINDS
-//   static_body  never moves; takes part in contacts with everything that moves.
+//   static_body  never moves (its velocity field is ignored, contacts see zero); meets
+//                everything that moves.
 //   kinematic    moves by its velocity; pushes dynamic bodies, is never pushed.
 //   dynamic      moves by velocity and gravity; pushed out of everything it overlaps.
 //   bullet       a point moving along a segment each step (last to next position); hits the
@@ -57,7 +58,8 @@
 //   sweeps       bullets in id order: segment cast from the old to the new position against
 //                everything they can hit; the first hit (ties: the lower id) is a bullet_hit
 //                event and the bullet then despawns, stops, or ricochets (mirror reflection,
-//                continuing with the rest of its path, up to max_sweep_hits per step).
+//                continuing with the rest of its path from just off the surface, lifted by
+//                `slop` so it does not start on it, up to max_sweep_hits per step).
 //                Fast circles in id order: swept against every collider they can hit, they
 //                stop at the time of first contact, take the contact's velocity response,
 //                and continue with the rest of the step (up to max_sweep_hits contacts).
@@ -92,7 +94,7 @@
 //   Resolution is translational: contacts change velocities, never angular velocity (the
 //   game sets spin). Non-circle dynamic bodies are moved discretely: keep their motion per
 //   step below half their smallest extent, or make them circles. Mask pushes are whole
-//   pixels. Coordinates as in the collision module (|x|, |y| <= 1e5 px).
+//   pixels, and so is each body's share of one. Coordinates as in the collision module (|x|, |y| <= 1e5 px).
 // ==================================================================================
 #pragma once
 
