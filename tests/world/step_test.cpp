@@ -67,3 +67,29 @@ TEST(Step, SameCallsSameHash) {
     };
     EXPECT_EQ(run(), run());
 }
+
+TEST(Step, StoppedBulletReportsItsHitOnce) {
+    World world;
+    EntityDesc wall;
+    wall.position = {100.0f, 0.0f};
+    wall.collider = Collider::aabb({2.0f, 50.0f});
+    const EntityId wall_id = world.create(wall);
+    EntityDesc bullet;
+    bullet.kind = BodyKind::bullet;
+    bullet.velocity = {6000.0f, 0.0f};  // 100 px per step: reaches the wall's face at x = 98
+    bullet.on_hit = BulletResponse::stop;
+    const EntityId id = world.create(bullet);
+    int hits = 0;
+    for (int i = 0; i < 10; ++i) {
+        world.step(kDt);
+        for (const Event& e : world.events()) {
+            if (e.type != EventType::bullet_hit) continue;
+            ++hits;
+            EXPECT_EQ(e.a, id);
+            EXPECT_EQ(e.b, wall_id);
+        }
+    }
+    EXPECT_EQ(hits, 1);
+    EXPECT_NEAR(world.get(id)->position.x, 98.0f, 1e-3f);
+    EXPECT_EQ(world.get(id)->velocity, (Vec2{0.0f, 0.0f}));
+}

@@ -55,6 +55,8 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
         const EntityId id = id_of(i);
         Vec2 from = slots[i].body.position;
         Vec2 velocity = slots[i].body.velocity;
+        // A bullet at rest (stopped on a hit, say) has no path, so it hits nothing again.
+        if (velocity.x == 0.0f && velocity.y == 0.0f) continue;
         float done = 0.0f;  // fraction of the step's path already travelled
         std::uint32_t last_hit = n_slots;  // none
         bool despawned = false;

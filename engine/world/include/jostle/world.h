@@ -56,7 +56,8 @@
 //                order contacts from the ground up and let the body nearer an immovable one
 //                stand still (shock propagation), so resting stacks end within `slop`.
 //   sweeps       bullets in id order: segment cast from the old to the new position against
-//                everything they can hit; the first hit (ties: the lower id) is a bullet_hit
+//                everything they can hit (a bullet at rest casts nothing, so a stopped
+//                bullet reports its hit once); the first hit (ties: the lower id) is a bullet_hit
 //                event and the bullet then despawns, stops, or ricochets (mirror reflection,
 //                continuing with the rest of its path from just off the surface, lifted by
 //                `slop` so it does not start on it, up to max_sweep_hits per step).
