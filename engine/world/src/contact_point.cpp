@@ -84,4 +84,25 @@ Vec2 contact_point(const Shape& a, const Shape& b, const Manifold& m) {
     return along * t + across * n;
 }
 
+bool corner_touch(const Shape& a, const Shape& b, const Manifold& m) {
+    if (!m.hit || m.depth != 0.0f) return false;
+    const Vec2 n = m.normal;
+    const Feature fa = extreme(a, n);
+    const Feature fb = extreme(b, -n);
+    if (fa.count == 0 || fb.count == 0) return false;  // masks: no touching contacts
+    if (std::holds_alternative<Circle>(a) || std::holds_alternative<Circle>(b)) return false;  // unique normal
+    // The touching features' extents along the surface: overlapping in a point only means
+    // the shapes meet corner to corner.
+    const Vec2 t = perp(n);
+    const auto range = [&](const Feature& f) {
+        const float u = dot(f.p[0], t);
+        const float v = dot(f.p[f.count - 1], t);
+        return std::pair{std::fmin(u, v), std::fmax(u, v)};
+    };
+    const auto [alo, ahi] = range(fa);
+    const auto [blo, bhi] = range(fb);
+    const float scale = 1.0f + std::fmax(std::fmax(std::fabs(alo), std::fabs(ahi)), std::fmax(std::fabs(blo), std::fabs(bhi)));
+    return std::fmin(ahi, bhi) - std::fmax(alo, blo) <= 1e-6f * scale;
+}
+
 }  // namespace jostle::detail

@@ -112,7 +112,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
             from = best_hit.point + lift_off(best_hit.point, desc.slop) * n;
             done = e.fraction;
             last_hit = best;
-            if (hits + 1 >= desc.max_sweep_hits || done >= 1.0f) {
+            if (hits + 1 >= std::max(desc.max_sweep_hits, 1) || done >= 1.0f) {
                 slots[i].body.position = from;
                 break;
             }
@@ -127,7 +127,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
         const EntityId id = id_of(i);
         const Vec2 start = s.body.position;
         float remaining = 1.0f;  // fraction of the step still to move
-        for (int hits = 0; hits < desc.max_sweep_hits && remaining > 0.0f; ++hits) {
+        for (int hits = 0; hits < std::max(desc.max_sweep_hits, 1) && remaining > 0.0f; ++hits) {
             const Shape shape = placed(i);
             const Circle* circle = std::get_if<Circle>(&shape);
             const Vec2 motion = (remaining * dt) * s.body.velocity;
@@ -140,7 +140,12 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
             std::uint32_t best = n_slots;
             SweepHit best_hit;
             broadphase.query(Aabb{min(from_box.min, to_box.min), max(from_box.max, to_box.max)}, [&](std::uint32_t j) {
-                if (j == i || !blocks(slots[j].body) || !detail::may_meet(s.body, id, slots[j].body, id_of(j))) return;
+                // Only what resolution could push it out of stops it (a body with no inverse
+                // mass passes through static ones, swept or not).
+                if (j == i || !blocks(slots[j].body) || !detail::may_meet(s.body, id, slots[j].body, id_of(j)) ||
+                    !detail::resolvable(s.body, slots[j].body)) {
+                    return;
+                }
                 const SweepHit h = sweep(*circle, motion, placed(j), Vec2{});
                 if (!h.hit) return;
                 if (best == n_slots || h.t < best_hit.t || (h.t == best_hit.t && j < best)) {

@@ -21,7 +21,6 @@ struct Slot {
     std::uint64_t mask_fingerprint = 0;  // hash of the mask's pixels (0: no mask)
     bool fast = false;             // this step: a dynamic circle left for the sweeps phase
     Vec2 friction_dv;              // this step: velocity change from friction impulses
-    Vec2 start_position;           // this step: the position before integration
 };
 
 // A candidate or touching pair; a.index < b.index.
@@ -32,6 +31,9 @@ struct Pair {
 
 // The point where two placed shapes meet, given their manifold (contact_point.cpp).
 Vec2 contact_point(const Shape& a, const Shape& b, const Manifold& m);
+// Shapes touching (depth 0) only corner to corner: the manifold's normal is then one of a
+// tie (a box sliding onto the next floor tile), so it takes no velocity response.
+bool corner_touch(const Shape& a, const Shape& b, const Manifold& m);
 
 // Inverse mass as resolution sees it: 0 for everything that is not a dynamic body.
 float resolution_inverse_mass(const EntityDesc& body);
@@ -82,6 +84,7 @@ struct World::Impl {
         // (speculative: the velocity solve lets them close the gap, no further).
         float separation = 0.0f;
         bool trigger = false;
+        bool corner = false;   // corner_touch: no velocity response
     };
     std::vector<NarrowContact> narrowphase(const std::vector<detail::Pair>& pairs);
     // Pushes act on every candidate pair (`pairs`): a push can make a pair overlap that

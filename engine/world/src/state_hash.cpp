@@ -84,6 +84,8 @@ std::uint64_t World::state_hash() const {
         hash_vec(h, c.normal);
         h.f32(c.depth);
         h.u32(c.trigger ? 1u : 0u);
+        h.u32(c.trigger_is_b ? 1u : 0u);
+        h.u32(c.corner ? 1u : 0u);
     }
     return h.value();
 }

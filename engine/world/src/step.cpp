@@ -63,7 +63,8 @@ void World::step(float dt) {
         const Shape a = w.placed(c.pair.a);
         const Shape b = w.placed(c.pair.b);
         touching.push_back({w.id_of(c.pair.a), w.id_of(c.pair.b), detail::contact_point(a, b, c.manifold),
-                            c.manifold.normal, c.manifold.depth, c.trigger});
+                            c.manifold.normal, c.manifold.depth, c.trigger,
+                            c.trigger && w.slots[c.pair.b].body.kind == BodyKind::trigger, c.corner});
     }
     w.resolve(found, pairs, dt);
     w.sweeps(dt, touching);
@@ -78,7 +79,107 @@ void World::step(float dt) {
 }
 
 // ---------------------------------------------------------------------------------------
-// integrate: velocities from gravity, then positions (semi-implicit Euler)
+// Velocity constraints, shared by integrate (contacts carried from the last step) and
+// resolve (this step's contacts): sequential impulses with accumulated, clamped impulses.
+// ---------------------------------------------------------------------------------------
+
+namespace {
+
+struct VelocityContact {
+    std::uint32_t a, b;
+    Vec2 normal;
+    float target;   // normal speed to reach: 0, a bounce, or closing a speculative gap
+    float friction;
+    float normal_impulse = 0.0f;   // accumulated, >= 0
+    float tangent_impulse = 0.0f;  // accumulated, |.| <= friction * normal_impulse
+};
+
+constexpr int kUnreached = 1 << 30;
+
+// Distance (in contacts) of each body from something immovable, for the ground-up order
+// (shock propagation). Bellman-Ford over the contact list: deterministic.
+template <typename Edges>
+std::vector<int> ground_levels(const std::vector<Slot>& slots, const Edges& edges) {
+    std::vector<int> level(slots.size(), kUnreached);
+    for (const auto& [a, b] : edges) {
+        for (std::uint32_t i : {a, b}) {
+            if (detail::resolution_inverse_mass(slots[i].body) == 0.0f) level[i] = 0;
+        }
+    }
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (const auto& [a, b] : edges) {
+            int& la = level[a];
+            int& lb = level[b];
+            if (la != kUnreached && la + 1 < lb) { lb = la + 1; changed = true; }
+            if (lb != kUnreached && lb + 1 < la) { la = lb + 1; changed = true; }
+        }
+    }
+    return level;
+}
+
+// Under shock propagation the body nearer the ground stands still for the one above it.
+std::pair<float, float> pair_masses(const std::vector<Slot>& slots, const std::vector<int>& level, std::uint32_t a,
+                                    std::uint32_t b, bool shock) {
+    float ima = detail::resolution_inverse_mass(slots[a].body);
+    float imb = detail::resolution_inverse_mass(slots[b].body);
+    if (shock && level[a] < level[b]) ima = 0.0f;
+    if (shock && level[b] < level[a]) imb = 0.0f;
+    return {ima, imb};
+}
+
+void solve_velocity(std::vector<Slot>& slots, const std::vector<int>& level, VelocityContact& vc, bool shock) {
+    const auto [ima, imb] = pair_masses(slots, level, vc.a, vc.b, shock);
+    const float k = ima + imb;
+    if (!(k > 0.0f)) return;
+    Slot& sa = slots[vc.a];
+    Slot& sb = slots[vc.b];
+    const Vec2 n = vc.normal;
+    const float vn = dot(detail::contact_velocity(sb.body) - detail::contact_velocity(sa.body), n);
+    const float total = std::fmax(vc.normal_impulse + (vc.target - vn) / k, 0.0f);
+    const float dn = total - vc.normal_impulse;
+    vc.normal_impulse = total;
+    sa.body.velocity -= (ima * dn) * n;
+    sb.body.velocity += (imb * dn) * n;
+    // Friction along the tangent, bounded by the normal impulse (Coulomb).
+    const Vec2 t = perp(n);
+    const float vt = dot(detail::contact_velocity(sb.body) - detail::contact_velocity(sa.body), t);
+    const float limit = vc.friction * vc.normal_impulse;
+    const float total_t = std::clamp(vc.tangent_impulse - vt / k, -limit, limit);
+    const float dt_impulse = total_t - vc.tangent_impulse;
+    vc.tangent_impulse = total_t;
+    const Vec2 dva = -(ima * dt_impulse) * t;
+    const Vec2 dvb = (imb * dt_impulse) * t;
+    sa.body.velocity += dva;
+    sb.body.velocity += dvb;
+    sa.friction_dv += dva;
+    sb.friction_dv += dvb;
+}
+
+// `passes` passes in the given order; the last one goes ground up with shock propagation,
+// so a resting stack ends still.
+void solve_velocities(std::vector<Slot>& slots, const std::vector<int>& level, std::vector<VelocityContact>& vcs,
+                      int passes) {
+    std::vector<VelocityContact*> ground_up;
+    for (VelocityContact& vc : vcs) ground_up.push_back(&vc);
+    std::stable_sort(ground_up.begin(), ground_up.end(), [&](const VelocityContact* x, const VelocityContact* y) {
+        return std::min(level[x->a], level[x->b]) < std::min(level[y->a], level[y->b]);
+    });
+    passes = std::max(passes, 1);
+    for (int pass = 0; pass < passes; ++pass) {
+        if (pass == passes - 1 && passes > 1) {
+            for (VelocityContact* vc : ground_up) solve_velocity(slots, level, *vc, true);
+        } else {
+            for (VelocityContact& vc : vcs) solve_velocity(slots, level, vc, false);
+        }
+    }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// integrate: velocities from gravity, held by the contacts carried from the last step, then
+// positions (semi-implicit Euler)
 // ---------------------------------------------------------------------------------------
 
 void World::Impl::integrate(float dt) {
@@ -86,14 +187,34 @@ void World::Impl::integrate(float dt) {
         Slot& s = slots[i];
         s.fast = false;
         s.friction_dv = {};
-        s.start_position = s.body.position;
+        if (s.alive && s.body.kind == BodyKind::dynamic) s.body.velocity += (s.body.gravity_scale * dt) * desc.gravity;
+    }
+    // Bodies resting on something keep resting: the contacts carried from the last step take
+    // the approach out of this step's velocity before it moves anything (Box2D's order). A
+    // box on the floor then does not sink by gravity * dt^2 each step, so sliding over tiled
+    // ground meets no tile's side at the seams.
+    std::vector<VelocityContact> carried;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (const Contact& c : contacts) {
+        const EntityDesc& ba = slots[c.a.index].body;
+        const EntityDesc& bb = slots[c.b.index].body;
+        if (c.trigger || c.corner || !detail::resolvable(ba, bb) || !detail::may_meet(ba, c.a, bb, c.b)) continue;
+        carried.push_back({c.a.index, c.b.index, c.normal, 0.0f, mixed_friction(ba, bb)});
+        edges.emplace_back(c.a.index, c.b.index);
+    }
+    if (!carried.empty()) {
+        solve_velocities(slots, ground_levels(slots, edges), carried, desc.velocity_passes);
+        for (Slot& s : slots) s.friction_dv = {};  // friction here acts before the motion
+    }
+
+    for (std::uint32_t i = 0; i < slots.size(); ++i) {
+        Slot& s = slots[i];
         if (!s.alive) continue;
         EntityDesc& b = s.body;
         // Bullets move along their path in the sweeps phase; static bodies never move.
         if (b.kind == BodyKind::static_body) continue;
         b.angle = wrap_angle(b.angle + b.angular_velocity * dt);
         if (b.kind == BodyKind::bullet) continue;
-        if (b.kind == BodyKind::dynamic) b.velocity += (b.gravity_scale * dt) * desc.gravity;
         const Vec2 motion = dt * b.velocity;
         if (b.kind == BodyKind::dynamic) {
             if (const auto* c = std::get_if<Circle>(&b.collider.local_shape())) {
@@ -154,7 +275,7 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
         // Bounds first: cheap, and for masks it is the lecture's first test (09-30).
         const Manifold m = overlaps(bounds(a), bounds(b)) ? collide(a, b) : Manifold{};
         if (m.hit) {
-            found.push_back({p, m, 0.0f, trigger});
+            found.push_back({p, m, 0.0f, trigger, detail::corner_touch(a, b, m)});
             continue;
         }
         // Bodies that touched last step and now miss by a rounding error (or a small gap)
@@ -171,7 +292,7 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
         if (!back.hit) continue;
         Manifold touching = back;
         touching.depth = 0.0f;
-        found.push_back({p, touching, std::fmax(kSpeculative - back.depth, 0.0f), false});
+        found.push_back({p, touching, std::fmax(kSpeculative - back.depth, 0.0f), false, false});
     }
     return found;
 }
@@ -179,19 +300,6 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
 // ---------------------------------------------------------------------------------------
 // resolve: velocity impulses, then MTD relaxation passes
 // ---------------------------------------------------------------------------------------
-
-namespace {
-
-struct VelocityContact {
-    std::uint32_t a, b;
-    Vec2 normal;
-    float target;   // normal speed to reach: 0, a bounce, or closing a speculative gap
-    float friction;
-    float normal_impulse = 0.0f;   // accumulated, >= 0
-    float tangent_impulse = 0.0f;  // accumulated, |.| <= friction * normal_impulse
-};
-
-}  // namespace
 
 void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::vector<Pair>& pairs, float dt) {
     std::vector<const NarrowContact*> contacts_in;
@@ -204,39 +312,21 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     }
     if (push_pairs.empty()) return;
 
-    // Distance (in contacts) from something immovable, for the ground-up order of the last
-    // passes (shock propagation). Bellman-Ford over the contact list: deterministic.
-    constexpr int kUnreached = 1 << 30;
-    std::vector<int> level(slots.size(), kUnreached);
-    for (const Pair& p : push_pairs) {
-        for (std::uint32_t i : {p.a, p.b}) {
-            if (detail::resolution_inverse_mass(slots[i].body) == 0.0f) level[i] = 0;
-        }
-    }
-    for (bool changed = true; changed;) {
-        changed = false;
-        for (const NarrowContact* c : contacts_in) {
-            int& la = level[c->pair.a];
-            int& lb = level[c->pair.b];
-            if (la != kUnreached && la + 1 < lb) { lb = la + 1; changed = true; }
-            if (lb != kUnreached && lb + 1 < la) { la = lb + 1; changed = true; }
-        }
-    }
-    // Under shock propagation the body nearer the ground stands still for the one above it.
-    const auto masses = [&](std::uint32_t a, std::uint32_t b, bool shock) {
-        float ima = detail::resolution_inverse_mass(slots[a].body);
-        float imb = detail::resolution_inverse_mass(slots[b].body);
-        if (shock && level[a] < level[b]) ima = 0.0f;
-        if (shock && level[b] < level[a]) imb = 0.0f;
-        return std::pair{ima, imb};
-    };
-    // Stable sorts, so ties keep the id order.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (const NarrowContact* c : contacts_in) edges.emplace_back(c->pair.a, c->pair.b);
+    // Pairs that only the pushes bring together still need their immovable side at level 0.
+    for (const Pair& p : push_pairs) edges.emplace_back(p.a, p.a);
+    const std::vector<int> level = ground_levels(slots, edges);
     const auto low_level = [&](std::uint32_t a, std::uint32_t b) { return std::min(level[a], level[b]); };
 
-    // Velocity: sequential impulses with accumulated, clamped impulses.
+    // Velocity: new impacts (bounce above the threshold), kept contacts closing their gap.
     std::vector<VelocityContact> vcs;
     vcs.reserve(contacts_in.size());
     for (const NarrowContact* c : contacts_in) {
+        // Corner to corner the normal is a tie (a box sliding onto the next floor tile
+        // touches its corner): no response; if they go on into each other, the next step
+        // has a real normal.
+        if (c->corner) continue;
         const EntityDesc& ba = slots[c->pair.a].body;
         const EntityDesc& bb = slots[c->pair.b].body;
         const Vec2 n = c->manifold.normal;
@@ -249,73 +339,16 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         }
         vcs.push_back({c->pair.a, c->pair.b, n, target, mixed_friction(ba, bb)});
     }
-    std::vector<VelocityContact*> velocity_ground_up;
-    for (VelocityContact& vc : vcs) velocity_ground_up.push_back(&vc);
-    std::stable_sort(velocity_ground_up.begin(), velocity_ground_up.end(),
-                     [&](const VelocityContact* x, const VelocityContact* y) { return low_level(x->a, x->b) < low_level(y->a, y->b); });
-    const auto solve_velocity = [&](VelocityContact& vc, bool shock) {
-        const auto [ima, imb] = masses(vc.a, vc.b, shock);
-        const float k = ima + imb;
-        if (!(k > 0.0f)) return;
-        Slot& sa = slots[vc.a];
-        Slot& sb = slots[vc.b];
-        const Vec2 n = vc.normal;
-        const float vn = dot(detail::contact_velocity(sb.body) - detail::contact_velocity(sa.body), n);
-        const float total = std::fmax(vc.normal_impulse + (vc.target - vn) / k, 0.0f);
-        const float dn = total - vc.normal_impulse;
-        vc.normal_impulse = total;
-        sa.body.velocity -= (ima * dn) * n;
-        sb.body.velocity += (imb * dn) * n;
-        // Friction along the tangent, bounded by the normal impulse (Coulomb).
-        const Vec2 t = perp(n);
-        const float vt = dot(detail::contact_velocity(sb.body) - detail::contact_velocity(sa.body), t);
-        const float limit = vc.friction * vc.normal_impulse;
-        const float total_t = std::clamp(vc.tangent_impulse - vt / k, -limit, limit);
-        const float dt_impulse = total_t - vc.tangent_impulse;
-        vc.tangent_impulse = total_t;
-        const Vec2 dva = -(ima * dt_impulse) * t;
-        const Vec2 dvb = (imb * dt_impulse) * t;
-        sa.body.velocity += dva;
-        sb.body.velocity += dvb;
-        sa.friction_dv += dva;
-        sb.friction_dv += dvb;
-    };
-    const int velocity_passes = std::max(desc.velocity_passes, 1);
-    for (int pass = 0; pass < velocity_passes; ++pass) {
-        // The last pass goes ground up with shock propagation, so a resting stack ends still.
-        if (pass == velocity_passes - 1 && velocity_passes > 1) {
-            for (VelocityContact* vc : velocity_ground_up) solve_velocity(*vc, true);
-        } else {
-            for (VelocityContact& vc : vcs) solve_velocity(vc, false);
-        }
-    }
+    solve_velocities(slots, level, vcs, desc.velocity_passes);
 
-    // A body whose contacts all touched at the start of the step is resting: it moves by
-    // its solved velocity (semi-implicit Euler), so a body held by friction or wedged between
-    // others stays exactly put instead of creeping by what the relaxation passes leave. Other
-    // bodies (landing, hit) keep their motion and the passes push them out; only the
-    // tangential velocity friction removed is taken from their motion.
-    std::vector<char> resting(slots.size(), 0);  // 0 untouched, 1 resting, 2 not
-    for (std::size_t k = 0; k < contacts_in.size(); ++k) {
-        const NarrowContact& c = *contacts_in[k];
-        const Slot& sa = slots[c.pair.a];
-        const Slot& sb = slots[c.pair.b];
-        // How far apart they were at the start of the step, along this contact's normal.
-        const Vec2 moved = (sb.body.position - sb.start_position) - (sa.body.position - sa.start_position);
-        const float apart_before = c.separation - c.manifold.depth - dot(moved, c.manifold.normal);
-        const char state = apart_before <= desc.slop ? 1 : 2;
-        for (std::uint32_t i : {c.pair.a, c.pair.b}) resting[i] = std::max(resting[i], state);
-    }
+    // What friction took from the tangential velocity is taken from this step's motion too
+    // (semi-implicit Euler), so a body that friction stops does not slide on for a step.
     for (const NarrowContact* c : contacts_in) {
         for (std::uint32_t i : {c->pair.a, c->pair.b}) {
             Slot& s = slots[i];
-            if (s.fast || detail::resolution_inverse_mass(s.body) == 0.0f || resting[i] == 0) continue;
-            if (resting[i] == 1) {
-                s.body.position = s.start_position + dt * s.body.velocity;
-            } else {
-                s.body.position += dt * s.friction_dv;
-            }
-            resting[i] = 0;  // once per body
+            if (s.fast || (s.friction_dv.x == 0.0f && s.friction_dv.y == 0.0f)) continue;
+            s.body.position += dt * s.friction_dv;
+            s.friction_dv = {};  // once per body
         }
     }
 
@@ -334,7 +367,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             if (!overlaps(bounds(a), bounds(b))) continue;
             const Manifold m = collide(a, b);
             if (!m.hit || !(m.depth > 0.0f)) continue;
-            const auto [ima, imb] = masses(p.a, p.b, shock);
+            const auto [ima, imb] = pair_masses(slots, level, p.a, p.b, shock);
             const float k = ima + imb;
             if (!(k > 0.0f)) continue;
             const Vec2 mtd = m.depth * m.normal;  // moves B out of A
@@ -381,7 +414,7 @@ void World::Impl::emit_events(std::vector<Contact> touching) {
         e.depth = c.depth;
         if (c.trigger) {
             e.type = begin ? EventType::trigger_enter : EventType::trigger_exit;
-            if (slots[c.a.index].body.kind != BodyKind::trigger) {  // the trigger comes first
+            if (c.trigger_is_b) {  // the trigger comes first
                 std::swap(e.a, e.b);
                 e.normal = -e.normal;
             }
@@ -397,6 +430,11 @@ void World::Impl::emit_events(std::vector<Contact> touching) {
         if (j == touching.size() || (i < contacts.size() && key_less(contacts[i], touching[j]))) {
             make(contacts[i++], false);
         } else if (i == contacts.size() || key_less(touching[j], contacts[i])) {
+            make(touching[j++], true);
+        } else if (contacts[i].trigger != touching[j].trigger || contacts[i].trigger_is_b != touching[j].trigger_is_b) {
+            // A body changed kind (set()) between trigger and not: the old contact ends, the
+            // new one begins.
+            make(contacts[i++], false);
             make(touching[j++], true);
         } else {
             ++i;

@@ -33,7 +33,9 @@
 //   (A.layer & B.collides_with) != 0 and (B.layer & A.collides_with) != 0.
 //
 // THE STEP, World::step(dt), in named phases:
-//   integrate    velocities += gravity * gravity_scale * dt (dynamic); positions += v * dt
+//   integrate    velocities += gravity * gravity_scale * dt (dynamic); the contacts carried
+//                from the last step take the approach out of those velocities (so resting
+//                bodies do not sink, and boxes slide over tile seams); positions += v * dt
 //                (dynamic, kinematic, trigger); angles += w * dt, wrapped to [-pi, pi].
 //                A dynamic circle moving more than half its radius this step is "fast": it
 //                is not moved here but swept in the sweeps phase.
@@ -42,13 +44,15 @@
 //                (lower id, higher id).
 //   narrowphase  collide(A, B) from the collision module for each candidate (A is the lower
 //                id); mask pairs test bounds first, then pixels over the overlap, then the
-//                integer mask MTD.
+//                integer mask MTD. A pair in contact last step that now misses (a rounding
+//                gap, or a gap under 1 px) is kept as a speculative contact: the velocity
+//                solve lets it close the gap in the next step, no further.
 //   resolve      velocity: per contact, the approach speed along the normal is removed
 //                (bounced back times the larger restitution when faster than
 //                restitution_threshold) and friction (sqrt of the two coefficients) opposes
 //                sliding, as impulses split by inverse mass, iterated velocity_passes times.
 //                The tangential velocity friction removed is also taken back out of this
-//                step's motion, so a body held by friction does not creep.
+//                step's motion, so a body that friction stops does not slide on a step.
 //                position: relaxation passes; each recomputes every contact's manifold and
 //                pushes along the MTD: a dynamic body against a static or kinematic one
 //                moves by the whole MTD; two dynamic bodies split it by inverse mass. The
@@ -70,8 +74,10 @@
 //                until the next step.
 //
 // CONTACTS AND EVENTS
-//   A pair is in contact in a step when the narrowphase reports a hit (touching counts) or
-//   a fast circle's sweep stopped on it. contact_begin: in contact now, not in the previous
+//   A pair is in contact in a step when the narrowphase reports a hit (touching counts), a
+//   kept contact's gap is at most `slop` (so rounding does not make events flicker), or a
+//   fast circle's sweep stopped on it. A body that changes kind (set()) between trigger and
+//   not ends its old contacts and begins new ones. contact_begin: in contact now, not in the previous
 //   step; contact_end: the reverse (normal, depth and point are the last ones seen). A pair
 //   whose entity was destroyed is dropped without an end event. normal points from a to b;
 //   for contacts a < b; for trigger events a is the trigger; for bullet_hit a is the bullet.
@@ -94,7 +100,11 @@
 // LIMITS
 //   Resolution is translational: contacts change velocities, never angular velocity (the
 //   game sets spin). Non-circle dynamic bodies are moved discretely: keep their motion per
-//   step below half their smallest extent, or make them circles. Mask pushes are whole
+//   step below half their smallest extent, or make them circles. A circle is swept along
+//   its entity's linear motion: a circle collider offset from a spinning entity is not swept
+//   for the spin. Pushes are not swept either: a small body crushed between a heavy mover
+//   and a thin wall can be pushed through the wall when the mover's motion per step exceeds
+//   the small body's radius. Mask pushes are whole
 //   pixels, and so is each body's share of one. Coordinates as in the collision module (|x|, |y| <= 1e5 px).
 // ==================================================================================
 #pragma once
@@ -196,7 +206,9 @@ struct Contact {
     Vec2 point;
     Vec2 normal;  // from a toward b
     float depth = 0.0f;  // at the narrowphase, before resolution
-    bool trigger = false;
+    bool trigger = false;       // one of them is a trigger: events are trigger_enter/exit
+    bool trigger_is_b = false;  // which one (a otherwise), as it was when they met
+    bool corner = false;        // touching corner to corner: the normal is a tie, no response
 };
 
 // What the last step moved continuously, for the debug overlay.
