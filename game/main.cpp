@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "imgdiff.h"
 #include "query.h"
 
 namespace {
@@ -23,6 +24,9 @@ constexpr Command kCommands[] = {
     {"query", "answer collision queries: JSON lines on stdin, one JSON result per line on stdout",
      jostle::query_help,
      [](std::span<const std::string_view> args) { return jostle::query_command(args, std::cin, std::cout, std::cerr); }},
+    {"imgdiff", "compare two PNG images within a tolerance (exit 0 match, 1 differ), optionally writing a diff picture",
+     jostle::imgdiff_help,
+     [](std::span<const std::string_view> args) { return jostle::imgdiff_command(args, std::cout, std::cerr); }},
 };
 
 const Command* find_command(std::string_view name) {

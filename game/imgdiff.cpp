@@ -1,0 +1,108 @@
+// `jostle imgdiff`: argument parsing and the report; the comparison itself is
+// jostle/render/image_compare.h.
+#include "imgdiff.h"
+
+#include <charconv>
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "jostle/core/error.h"
+#include "jostle/render/image_compare.h"
+#include "jostle/render/png_io.h"
+
+namespace jostle {
+
+namespace {
+
+// A whole number in [lo, hi], all of `text`, or nullopt.
+std::optional<std::int64_t> parse_count(std::string_view text, std::int64_t lo, std::int64_t hi) {
+    std::int64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc{} || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
+    return v;
+}
+
+int usage(std::ostream& err, const std::string& message) {
+    err << "jostle imgdiff: " << message << "\nRun 'jostle imgdiff --help' for usage.\n";
+    return 2;
+}
+
+}  // namespace
+
+std::string_view imgdiff_help() {
+    return R"(usage: jostle imgdiff EXPECTED.png ACTUAL.png [--out DIFF.png] [--tolerance N] [--max-pixels N]
+
+Compares two PNG images. Identical bytes match at once; otherwise a pixel differs when one
+of its R, G, B, A channels differs by more than the tolerance, and the images match when at
+most --max-pixels pixels differ. Images of different sizes never match.
+
+options:
+  --out DIFF.png    write a diff picture: EXPECTED faded toward white with every differing
+                    pixel in red (written atomically, whatever the outcome)
+  --tolerance N     largest channel difference (0..255) that still counts as equal; default 0
+  --max-pixels N    how many differing pixels are allowed; default 0
+
+output: one line, "identical", "match" or "differ", with the counts.
+exit status: 0 the images match, 1 they differ, 2 bad usage or an unreadable image.
+)";
+}
+
+int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, std::ostream& err) {
+    std::vector<std::string> files;
+    std::optional<std::string> diff_path;
+    CompareOptions options;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string_view a = args[i];
+        const auto value = [&]() -> std::optional<std::string_view> {
+            if (i + 1 >= args.size()) return std::nullopt;
+            return args[++i];
+        };
+        if (a == "--out" || a == "--tolerance" || a == "--max-pixels") {
+            const auto v = value();
+            if (!v) return usage(err, std::string(a) + " needs a value");
+            if (a == "--out") {
+                diff_path = std::string(*v);
+            } else if (a == "--tolerance") {
+                const auto n = parse_count(*v, 0, 255);
+                if (!n) return usage(err, "--tolerance: expected a whole number from 0 to 255, got '" + std::string(*v) + "'");
+                options.max_channel_delta = static_cast<int>(*n);
+            } else {
+                const auto n = parse_count(*v, 0, INT64_MAX);
+                if (!n) return usage(err, "--max-pixels: expected a whole number >= 0, got '" + std::string(*v) + "'");
+                options.max_differing_pixels = *n;
+            }
+        } else if (a.size() > 1 && a.front() == '-') {
+            return usage(err, "unknown option '" + std::string(a) + "'");
+        } else {
+            files.emplace_back(a);
+        }
+    }
+    if (files.size() != 2) return usage(err, "expected two PNG files (EXPECTED and ACTUAL), got " + std::to_string(files.size()));
+
+    try {
+        const Image expected = read_png(files[0]);
+        const Image actual = read_png(files[1]);
+        const CompareResult r = compare_images(expected, actual, options);
+        if (diff_path) write_png_atomic(*diff_path, diff_image(expected, actual, options.max_channel_delta));
+        const auto size = [](const Image& im) { return std::to_string(im.width) + "x" + std::to_string(im.height); };
+        if (r.identical) {
+            out << "identical: " << size(expected) << '\n';
+        } else if (!r.same_size) {
+            out << "differ: sizes " << size(expected) << " and " << size(actual) << '\n';
+        } else {
+            out << (r.within_tolerance ? "match: " : "differ: ") << r.differing_pixels << " of "
+                << std::int64_t{expected.width} * expected.height << " pixels differ by more than "
+                << options.max_channel_delta << " (allowed " << options.max_differing_pixels
+                << "); largest channel difference " << r.max_channel_delta << '\n';
+        }
+        return r.within_tolerance ? 0 : 1;
+    } catch (const InputError& e) {
+        err << "jostle imgdiff: " << e.what() << '\n';
+        return 2;
+    }
+}
+
+}  // namespace jostle

@@ -1,0 +1,113 @@
+// `jostle imgdiff`, called in-process: identical, slightly different and very different
+// images, tolerances, the diff picture it writes, and every usage and input error (exit 2).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "imgdiff.h"
+#include "jostle/render/png_io.h"
+
+using namespace jostle;
+
+namespace {
+
+struct Outcome {
+    int status;
+    std::string out;
+    std::string err;
+};
+
+Outcome run(std::vector<std::string> args) {
+    std::vector<std::string_view> views(args.begin(), args.end());
+    std::ostringstream out, err;
+    const int status = imgdiff_command(views, out, err);
+    return {status, out.str(), err.str()};
+}
+
+class Imgdiff : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = std::filesystem::path(::testing::TempDir()) /
+               ("imgdiff_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        std::filesystem::remove_all(dir_);
+        std::filesystem::create_directories(dir_);
+        Image base{16, 8, std::vector<std::uint8_t>(16 * 8 * 4)};
+        for (std::size_t i = 0; i < base.rgba.size(); i += 4) {
+            base.rgba[i] = 40;
+            base.rgba[i + 1] = 80;
+            base.rgba[i + 2] = 120;
+            base.rgba[i + 3] = 255;
+        }
+        write_png_atomic(path("a.png"), base);
+        Image slight = base;
+        slight.rgba[(3 * 16 + 5) * 4] = 42;  // one pixel, red off by 2
+        write_png_atomic(path("slight.png"), slight);
+        Image very = base;
+        for (std::size_t i = 0; i < very.rgba.size(); i += 4) very.rgba[i] = 255;
+        write_png_atomic(path("very.png"), very);
+        Image wide{17, 8, std::vector<std::uint8_t>(17 * 8 * 4, 255)};
+        write_png_atomic(path("wide.png"), wide);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    std::filesystem::path dir_;
+};
+
+}  // namespace
+
+TEST_F(Imgdiff, IdenticalImagesMatch) {
+    const Outcome o = run({path("a.png"), path("a.png")});
+    EXPECT_EQ(o.status, 0);
+    EXPECT_EQ(o.out, "identical: 16x8\n");
+}
+
+TEST_F(Imgdiff, SlightDifferenceFailsExactlyAndPassesWithATolerance) {
+    Outcome o = run({path("a.png"), path("slight.png")});
+    EXPECT_EQ(o.status, 1);
+    EXPECT_EQ(o.out, "differ: 1 of 128 pixels differ by more than 0 (allowed 0); largest channel difference 2\n");
+    o = run({path("a.png"), path("slight.png"), "--tolerance", "2"});
+    EXPECT_EQ(o.status, 0);
+    EXPECT_EQ(o.out, "match: 0 of 128 pixels differ by more than 2 (allowed 0); largest channel difference 2\n");
+    o = run({path("a.png"), path("slight.png"), "--max-pixels", "1"});
+    EXPECT_EQ(o.status, 0);
+}
+
+TEST_F(Imgdiff, VeryDifferentImagesDifferAndTheDiffPictureMarksThem) {
+    const Outcome o = run({path("a.png"), path("very.png"), "--out", path("diff.png"), "--tolerance", "10"});
+    EXPECT_EQ(o.status, 1);
+    EXPECT_EQ(o.out, "differ: 128 of 128 pixels differ by more than 10 (allowed 0); largest channel difference 215\n");
+    const Image d = read_png(path("diff.png"));
+    ASSERT_EQ(d.width, 16);
+    for (std::size_t i = 0; i < d.rgba.size(); i += 4) {
+        ASSERT_EQ(d.rgba[i], 255);
+        ASSERT_EQ(d.rgba[i + 1], 0);
+    }
+}
+
+TEST_F(Imgdiff, DifferentSizesDiffer) {
+    const Outcome o = run({path("a.png"), path("wide.png"), "--max-pixels", "1000"});
+    EXPECT_EQ(o.status, 1);
+    EXPECT_EQ(o.out, "differ: sizes 16x8 and 17x8\n");
+}
+
+TEST_F(Imgdiff, BadUsageAndBadInputExitTwo) {
+    const auto expect_error = [](const Outcome& o, const std::string& message) {
+        EXPECT_EQ(o.status, 2);
+        EXPECT_EQ(o.out, "");
+        EXPECT_NE(o.err.find(message), std::string::npos) << o.err;
+    };
+    expect_error(run({path("a.png")}), "expected two PNG files (EXPECTED and ACTUAL), got 1");
+    expect_error(run({path("a.png"), path("a.png"), path("a.png")}), "got 3");
+    expect_error(run({path("a.png"), path("a.png"), "--tolerance"}), "--tolerance needs a value");
+    expect_error(run({path("a.png"), path("a.png"), "--tolerance", "256"}),
+                 "--tolerance: expected a whole number from 0 to 255, got '256'");
+    expect_error(run({path("a.png"), path("a.png"), "--max-pixels", "-1"}), "--max-pixels: expected a whole number >= 0, got '-1'");
+    expect_error(run({path("a.png"), path("a.png"), "--fast"}), "unknown option '--fast'");
+    expect_error(run({path("a.png"), path("missing.png")}), "missing.png");
+    expect_error(run({path("a.png"), std::string(JOSTLE_TEST_DATA) + "/truncated.png"}), "truncated.png");
+    // A failed comparison never leaves a diff file behind.
+    run({path("a.png"), path("missing.png"), "--out", path("never.png")});
+    EXPECT_FALSE(std::filesystem::exists(path("never.png")));
+}
