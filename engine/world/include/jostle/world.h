@@ -76,13 +76,15 @@
 // CONTACTS AND EVENTS
 //   A pair is in contact in a step when the narrowphase reports a hit (touching counts), a
 //   kept contact's gap is at most `slop` (so rounding does not make events flicker), or a
-//   fast circle's sweep stopped on it. A body that changes kind (set()) between trigger and
-//   not ends its old contacts and begins new ones. contact_begin: in contact now, not in the previous
-//   step; contact_end: the reverse (normal, depth and point are the last ones seen). A pair
-//   whose entity was destroyed is dropped without an end event. normal points from a to b;
-//   for contacts a < b; for trigger events a is the trigger; for bullet_hit a is the bullet.
-//   point is where the shapes meet (the middle of the overlap along the normal; for masks the
-//   middle of the overlapping bounds).
+//   fast circle's sweep stopped on it. contact_begin: in contact now, not in the previous
+//   step; contact_end: the reverse (normal, depth and point are the last ones seen). A body
+//   that changes kind (set()) between trigger and not ends its old contacts and begins new
+//   ones. A pair whose entity was destroyed is dropped without an end event. normal points
+//   from a to b; for contacts a < b; for trigger events a is the trigger; for bullet_hit a
+//   is the bullet. point is where the shapes meet (the middle of the overlap along the
+//   normal; for masks the middle of the overlapping bounds). Shapes touching only corner to
+//   corner (depth 0, a tied normal: a box sliding onto the next floor tile) are in contact
+//   but get no velocity response.
 //
 // CHANGES DURING A STEP
 //   The handler may create and destroy entities and change them. A created entity exists
@@ -104,8 +106,8 @@
 //   its entity's linear motion: a circle collider offset from a spinning entity is not swept
 //   for the spin. Pushes are not swept either: a small body crushed between a heavy mover
 //   and a thin wall can be pushed through the wall when the mover's motion per step exceeds
-//   the small body's radius. Mask pushes are whole
-//   pixels, and so is each body's share of one. Coordinates as in the collision module (|x|, |y| <= 1e5 px).
+//   the small body's radius. Mask pushes are whole pixels, and so is each body's share of
+//   one. Coordinates as in the collision module (|x|, |y| <= 1e5 px).
 // ==================================================================================
 #pragma once
 
