@@ -1,0 +1,168 @@
+// The OSMesa backend: Mesa's software OpenGL (llvmpipe) renders into a buffer in memory, with
+// no window and no GPU. An OpenGL 3.3 core context, one shader, one vertex buffer, the atlas as
+// one texture: a frame is one glDrawArrays. The only file that includes GL/OSMesa headers.
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/osmesa.h>
+#include <GL/glcorearb.h>
+
+#include "backend.h"
+
+namespace jostle::detail {
+
+namespace {
+
+constexpr const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec2 position;  // image pixels, y down
+layout(location = 1) in vec2 uv;
+layout(location = 2) in vec4 color;
+uniform vec2 viewport;
+out vec2 v_uv;
+out vec4 v_color;
+void main() {
+    // Image row 0 is the top: y down in pixels is y up in clip space.
+    gl_Position = vec4(position.x / viewport.x * 2.0 - 1.0, 1.0 - position.y / viewport.y * 2.0, 0.0, 1.0);
+    v_uv = uv;
+    v_color = color;
+}
+)";
+
+constexpr const char* kFragmentShader = R"(#version 330 core
+in vec2 v_uv;
+in vec4 v_color;
+uniform sampler2D atlas;
+out vec4 out_color;
+void main() { out_color = texture(atlas, v_uv) * v_color; }
+)";
+
+GLuint compile(GLenum type, const char* source) {
+    const GLuint shader = glCreateShader(type);
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        char log[1024] = {};
+        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+        throw std::runtime_error(std::string("OSMesa backend: shader does not compile: ") + log);
+    }
+    return shader;
+}
+
+class OsmesaBackend final : public Backend {
+public:
+    OsmesaBackend() {
+        const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
+                               OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                               OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+        context_ = OSMesaCreateContextAttribs(attribs, nullptr);
+        if (context_ == nullptr) throw std::runtime_error("OSMesa backend: cannot create an OpenGL 3.3 core context");
+        resize(1, 1);
+        const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
+        const GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+        program_ = glCreateProgram();
+        glAttachShader(program_, vs);
+        glAttachShader(program_, fs);
+        glLinkProgram(program_);
+        glDeleteShader(vs);
+        glDeleteShader(fs);
+        GLint ok = GL_FALSE;
+        glGetProgramiv(program_, GL_LINK_STATUS, &ok);
+        if (ok != GL_TRUE) throw std::runtime_error("OSMesa backend: shader program does not link");
+        viewport_uniform_ = glGetUniformLocation(program_, "viewport");
+
+        glGenVertexArrays(1, &vao_);
+        glBindVertexArray(vao_);
+        glGenBuffers(1, &vbo_);
+        glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+        glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, x)));
+        glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, u)));
+        glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, r)));
+        for (GLuint i = 0; i < 3; ++i) glEnableVertexAttribArray(i);
+
+        glGenTextures(1, &texture_);
+        glBindTexture(GL_TEXTURE_2D, texture_);
+        // Nearest texels: pixel art stays exact, and results do not depend on filtering.
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    }
+
+    ~OsmesaBackend() override {
+        if (context_ != nullptr) OSMesaDestroyContext(context_);
+    }
+
+    int render(const Frame& frame, Image& out) override {
+        resize(frame.width, frame.height);
+        glViewport(0, 0, frame.width, frame.height);
+        glClearColor(frame.clear.r / 255.0f, frame.clear.g / 255.0f, frame.clear.b / 255.0f, frame.clear.a / 255.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        int calls = 0;
+        if (frame.vertices != nullptr && !frame.vertices->empty()) {
+            if (frame.atlas_version != uploaded_version_) {
+                glBindTexture(GL_TEXTURE_2D, texture_);
+                glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame.atlas->width, frame.atlas->height, 0, GL_RGBA,
+                             GL_UNSIGNED_BYTE, frame.atlas->rgba.data());
+                uploaded_version_ = frame.atlas_version;
+            }
+            // Straight alpha over the frame: colour by source alpha, alpha accumulated.
+            glEnable(GL_BLEND);
+            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+            glUseProgram(program_);
+            glUniform2f(viewport_uniform_, static_cast<float>(frame.width), static_cast<float>(frame.height));
+            glBindVertexArray(vao_);
+            glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+            glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(frame.vertices->size() * sizeof(Vertex)),
+                         frame.vertices->data(), GL_STREAM_DRAW);
+            glBindTexture(GL_TEXTURE_2D, texture_);
+            glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(frame.vertices->size()));
+            calls = 1;
+        }
+        glFinish();
+        // OSMesa's buffer starts at the bottom row; images start at the top.
+        out.width = frame.width;
+        out.height = frame.height;
+        const std::size_t row = static_cast<std::size_t>(frame.width) * 4u;
+        out.rgba.resize(row * static_cast<std::size_t>(frame.height));
+        for (int y = 0; y < frame.height; ++y) {
+            std::memcpy(out.rgba.data() + static_cast<std::size_t>(y) * row,
+                        buffer_.data() + static_cast<std::size_t>(frame.height - 1 - y) * row, row);
+        }
+        return calls;
+    }
+
+private:
+    void resize(int width, int height) {
+        if (width != width_ || height != height_) {
+            buffer_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4u, 0);
+            width_ = width;
+            height_ = height;
+        }
+        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width, height)) {
+            throw std::runtime_error("OSMesa backend: cannot bind a " + std::to_string(width) + "x" + std::to_string(height) + " buffer");
+        }
+    }
+
+    OSMesaContext context_ = nullptr;
+    std::vector<std::uint8_t> buffer_;
+    int width_ = 0;
+    int height_ = 0;
+    GLuint program_ = 0;
+    GLint viewport_uniform_ = -1;
+    GLuint vao_ = 0;
+    GLuint vbo_ = 0;
+    GLuint texture_ = 0;
+    std::uint64_t uploaded_version_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_osmesa_backend() { return std::make_unique<OsmesaBackend>(); }
+
+}  // namespace jostle::detail

@@ -1,0 +1,175 @@
+// The Renderer on both backends: exact pixels for solid shapes (pixel centres inside a shape
+// are covered), orientation (world top-left is image top-left), sprites and their rotation,
+// alpha blending, the camera, batching into one draw call, and run-to-run identical frames.
+#include <gtest/gtest.h>
+
+#include "jostle/render/renderer.h"
+
+using namespace jostle;
+
+namespace {
+
+constexpr Color kBlack{0, 0, 0, 255};
+constexpr Color kRed{255, 0, 0, 255};
+constexpr Color kGreen{0, 255, 0, 255};
+constexpr Color kBlue{0, 0, 255, 255};
+constexpr Color kWhite{255, 255, 255, 255};
+
+Color at(const Image& im, int x, int y) {
+    const std::uint8_t* p = im.rgba.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(im.width) + static_cast<std::size_t>(x)) * 4u;
+    return {p[0], p[1], p[2], p[3]};
+}
+
+// A w x h sprite whose four quadrants are red (top-left), green (top-right), blue
+// (bottom-left) and white (bottom-right).
+Image quadrant_sprite(int w, int h) {
+    Image im{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h) * 4)};
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const Color c = y < h / 2 ? (x < w / 2 ? kRed : kGreen) : (x < w / 2 ? kBlue : kWhite);
+            std::uint8_t* p = im.rgba.data() + (y * w + x) * 4;
+            p[0] = c.r; p[1] = c.g; p[2] = c.b; p[3] = c.a;
+        }
+    }
+    return im;
+}
+
+}  // namespace
+
+namespace jostle {
+// How gtest prints a Color in a failure message.
+void PrintTo(Color c, std::ostream* os) { *os << "(" << int{c.r} << "," << int{c.g} << "," << int{c.b} << "," << int{c.a} << ")"; }
+}  // namespace jostle
+
+TEST(RendererNull, ImageIsTheClearColourAndNoDrawCalls) {
+    Renderer r({.backend = RenderBackend::null});
+    r.begin_frame(7, 3, {1, 2, 3, 4});
+    r.fill_rect({{0, 0}, {7, 3}}, kRed);
+    const Image& im = r.end_frame();
+    ASSERT_EQ(im.width, 7);
+    ASSERT_EQ(im.height, 3);
+    for (int y = 0; y < 3; ++y) {
+        for (int x = 0; x < 7; ++x) EXPECT_EQ(at(im, x, y), (Color{1, 2, 3, 4}));
+    }
+    EXPECT_EQ(r.last_draw_calls(), 0);
+}
+
+TEST(RendererOsmesa, FilledRectangleCoversExactlyItsPixels) {
+    Renderer r;
+    r.begin_frame(10, 8, kBlack);
+    r.fill_rect({{2, 3}, {6, 5}}, kRed);  // pixels x 2..5, y 3..4
+    const Image& im = r.end_frame();
+    ASSERT_EQ(im.width, 10);
+    ASSERT_EQ(im.height, 8);
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 10; ++x) {
+            const bool inside = x >= 2 && x < 6 && y >= 3 && y < 5;
+            EXPECT_EQ(at(im, x, y), inside ? kRed : kBlack) << "pixel " << x << "," << y;
+        }
+    }
+    EXPECT_EQ(r.last_draw_calls(), 1);
+}
+
+TEST(RendererOsmesa, SpriteInTheTopLeftOfTheWorldIsInTheTopLeftOfTheImage) {
+    Renderer r;
+    const SpriteId s = r.add_sprite(quadrant_sprite(8, 8));
+    EXPECT_EQ(r.sprite_size(s), (Vec2{8, 8}));
+    r.begin_frame(32, 24, kBlack);
+    r.draw_sprite(s, {4, 4});  // covers world pixels 0..7 x 0..7
+    const Image& im = r.end_frame();
+    EXPECT_EQ(at(im, 0, 0), kRed);
+    EXPECT_EQ(at(im, 7, 0), kGreen);
+    EXPECT_EQ(at(im, 0, 7), kBlue);
+    EXPECT_EQ(at(im, 7, 7), kWhite);
+    EXPECT_EQ(at(im, 8, 8), kBlack);
+    EXPECT_EQ(at(im, 31, 23), kBlack);
+}
+
+TEST(RendererOsmesa, SpriteTurnsByQuarterTurns) {
+    Renderer r;
+    const SpriteId s = r.add_sprite(quadrant_sprite(8, 8));
+    // +pi/2 turns +x toward +y (clockwise on screen): the top-left (red) quadrant goes to the
+    // top-right, and so on around.
+    const float quarter = 1.5707963f;
+    const Color expected_top_left[4] = {kRed, kBlue, kWhite, kGreen};
+    for (int k = 0; k < 4; ++k) {
+        r.begin_frame(16, 16, kBlack);
+        r.draw_sprite(s, {8, 8}, quarter * static_cast<float>(k));
+        const Image& im = r.end_frame();
+        EXPECT_EQ(at(im, 5, 5), expected_top_left[k]) << "turn " << k;
+        // Every pixel of the sprite's square is covered, none outside.
+        EXPECT_NE(at(im, 4, 4), kBlack) << "turn " << k;
+        EXPECT_NE(at(im, 11, 11), kBlack) << "turn " << k;
+        EXPECT_EQ(at(im, 3, 8), kBlack) << "turn " << k;
+        EXPECT_EQ(at(im, 12, 8), kBlack) << "turn " << k;
+    }
+}
+
+TEST(RendererOsmesa, HalfTransparentRedOverBlueBlends) {
+    Renderer r;
+    r.begin_frame(4, 4, kBlack);
+    r.fill_rect({{0, 0}, {4, 4}}, kBlue);
+    r.fill_rect({{0, 0}, {2, 4}}, {255, 0, 0, 128});
+    const Image& im = r.end_frame();
+    const Color blended = at(im, 0, 0);
+    EXPECT_NEAR(blended.r, 128, 1);
+    EXPECT_EQ(blended.g, 0);
+    EXPECT_NEAR(blended.b, 127, 1);
+    EXPECT_EQ(blended.a, 255);
+    EXPECT_EQ(at(im, 3, 0), kBlue);
+}
+
+TEST(RendererOsmesa, CameraMovesAndZooms) {
+    Renderer r;
+    r.begin_frame(8, 8, kBlack, {.origin = {10, 20}, .zoom = 2.0f});
+    r.fill_rect({{11, 21}, {12, 22}}, kGreen);  // image pixels 2..3 x 2..3
+    const Image& im = r.end_frame();
+    EXPECT_EQ(at(im, 2, 2), kGreen);
+    EXPECT_EQ(at(im, 3, 3), kGreen);
+    EXPECT_EQ(at(im, 1, 2), kBlack);
+    EXPECT_EQ(at(im, 4, 3), kBlack);
+}
+
+TEST(RendererOsmesa, ManySpritesAndShapesAreOneDrawCall) {
+    Renderer r;
+    std::vector<SpriteId> sprites;
+    for (int i = 0; i < 20; ++i) sprites.push_back(r.add_sprite(quadrant_sprite(4 + i, 6)));
+    r.begin_frame(320, 240, kBlack);
+    for (int i = 0; i < 1000; ++i) {
+        r.draw_sprite(sprites[static_cast<std::size_t>(i) % sprites.size()], {static_cast<float>(i % 300), static_cast<float>(i % 200)}, 0.01f * static_cast<float>(i));
+    }
+    r.fill_shape(Circle{{100, 100}, 30}, kRed);
+    r.outline_shape(Obb{{50, 50}, {20, 10}, 0.3f}, kGreen, 2.0f);
+    r.end_frame();
+    EXPECT_EQ(r.last_draw_calls(), 1);
+}
+
+TEST(RendererOsmesa, SameFrameSamePixels) {
+    const auto render = [] {
+        Renderer r;
+        const SpriteId s = r.add_sprite(quadrant_sprite(16, 12));
+        r.begin_frame(64, 48, {10, 20, 30, 255});
+        r.draw_sprite(s, {20, 20}, 0.7f, {1.5f, 0.75f}, {255, 255, 255, 200});
+        r.fill_shape(Circle{{40, 30}, 9.5f}, {200, 100, 0, 180});
+        r.outline_shape(Polygon{}, kRed);  // invalid: nothing
+        r.draw_line({0, 47}, {63, 0}, kWhite, 1.5f);
+        return r.end_frame();
+    };
+    const Image a = render();
+    const Image b = render();
+    EXPECT_EQ(a.rgba, b.rgba);
+}
+
+TEST(RendererOsmesa, MaskFillCoversItsSetPixels) {
+    const auto mask = Mask::from_rows(std::vector<std::string_view>{"#.#", ".##"});
+    ASSERT_TRUE(mask.has_value());
+    Renderer r;
+    r.begin_frame(6, 4, kBlack);
+    r.fill_shape(PlacedMask{&*mask, 1, 1}, kWhite);
+    const Image& im = r.end_frame();
+    for (int y = 0; y < 4; ++y) {
+        for (int x = 0; x < 6; ++x) {
+            EXPECT_EQ(at(im, x, y), mask->get(x - 1, y - 1) ? kWhite : kBlack) << x << "," << y;
+        }
+    }
+}
