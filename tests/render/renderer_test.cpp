@@ -3,6 +3,7 @@
 // alpha blending, the camera, batching into one draw call, and run-to-run identical frames.
 #include <gtest/gtest.h>
 
+#include "font.h"
 #include "jostle/render/renderer.h"
 
 using namespace jostle;
@@ -170,6 +171,29 @@ TEST(RendererOsmesa, MaskFillCoversItsSetPixels) {
     for (int y = 0; y < 4; ++y) {
         for (int x = 0; x < 6; ++x) {
             EXPECT_EQ(at(im, x, y), mask->get(x - 1, y - 1) ? kWhite : kBlack) << x << "," << y;
+        }
+    }
+}
+
+TEST(RendererOsmesa, TextIsTheFontsPixelsAtEachScale) {
+    Renderer r;
+    for (const int scale : {1, 2, 3}) {
+        r.begin_frame(40, 30, kBlack);
+        const Vec2 size = r.draw_text({2, 3}, "A\x01", kGreen, scale);  // '\x01' shows as '?'
+        const Image& im = r.end_frame();
+        EXPECT_EQ(size, (Vec2{static_cast<float>(11 * scale), static_cast<float>(7 * scale)}));
+        for (int y = 0; y < 30; ++y) {
+            for (int x = 0; x < 40; ++x) {
+                // Which font pixel this image pixel shows, if any.
+                const int fx = (x - 2) / scale, fy = (y - 3) / scale;
+                bool on = false;
+                if (x >= 2 && y >= 3 && fy < 7) {
+                    const char c = fx < 6 ? 'A' : '?';
+                    const int gx = fx < 6 ? fx : fx - 6;
+                    on = gx < 5 && ((detail::glyph(c).rows[fy] >> (4 - gx)) & 1u) != 0;
+                }
+                ASSERT_EQ(at(im, x, y), on ? kGreen : kBlack) << "scale " << scale << " pixel " << x << "," << y;
+            }
         }
     }
 }

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "backend.h"
+#include "font.h"
 #include "jostle/core/error.h"
 
 namespace jostle {
@@ -35,6 +36,7 @@ struct Renderer::Impl {
     Image atlas;
     std::uint64_t atlas_version = 1;
     std::vector<Rect> sprites;  // SpriteId value - 1
+    std::uint32_t first_glyph = 0;  // SpriteId of ' ' (the font is baked in as sprites 32..126)
     int shelf_x = 0, shelf_y = 0, shelf_h = 0;
 
     // The frame being drawn.
@@ -124,6 +126,20 @@ Renderer::Renderer(const RendererDesc& desc) : impl_(std::make_unique<Impl>()) {
     }
     impl_->shelf_x = kWhite + kPadding;
     impl_->shelf_h = kWhite;
+    // The built-in font: each printable glyph as a white sprite with alpha where it is on.
+    for (int c = 32; c <= 126; ++c) {
+        const detail::Glyph& g = detail::glyph(static_cast<char>(c));
+        Image im{detail::kGlyphWidth, detail::kGlyphHeight,
+                 std::vector<std::uint8_t>(static_cast<std::size_t>(detail::kGlyphWidth * detail::kGlyphHeight) * 4u, 255)};
+        for (int y = 0; y < detail::kGlyphHeight; ++y) {
+            for (int x = 0; x < detail::kGlyphWidth; ++x) {
+                const bool on = ((g.rows[y] >> (detail::kGlyphWidth - 1 - x)) & 1u) != 0;
+                im.rgba[static_cast<std::size_t>(y * detail::kGlyphWidth + x) * 4u + 3u] = on ? 255 : 0;
+            }
+        }
+        const SpriteId id = add_sprite(im);
+        if (c == 32) impl_->first_glyph = id.value;
+    }
 }
 
 Renderer::~Renderer() = default;
@@ -274,6 +290,36 @@ void Renderer::draw_line(Vec2 a, Vec2 b, Color color, float thickness) {
     if (!is_finite(a) || !is_finite(b)) return;
     r.image_line(r.to_image(a), r.to_image(b), color, thickness);
 }
+
+Vec2 Renderer::draw_text(Vec2 image_position, std::string_view text, Color color, int scale) {
+    Impl& r = *impl_;
+    JOSTLE_ASSERT(r.in_frame, "draw_text outside begin_frame/end_frame");
+    JOSTLE_ASSERT(scale >= 1, "text scale must be >= 1");
+    int width = 0;
+    int height = 0;
+    const std::vector<detail::PlacedGlyph> placed = detail::layout_text(text, &width, &height);
+    if (!is_finite(image_position)) return {};
+    const float s = static_cast<float>(scale);
+    const float inv = 1.0f / static_cast<float>(r.atlas.width);
+    for (const detail::PlacedGlyph& p : placed) {
+        const auto code = static_cast<unsigned char>(p.c);
+        const unsigned index = (code >= 32 && code <= 126) ? code - 32u : static_cast<unsigned>('?' - 32);
+        const Impl::Rect& rect = r.sprites[r.first_glyph - 1 + index];
+        const Vec2 a = image_position + s * Vec2{static_cast<float>(p.x), static_cast<float>(p.y)};
+        const Vec2 b = a + s * Vec2{static_cast<float>(rect.w), static_cast<float>(rect.h)};
+        const float u0 = static_cast<float>(rect.x) * inv, u1 = static_cast<float>(rect.x + rect.w) * inv;
+        const float v0 = static_cast<float>(rect.y) * inv, v1 = static_cast<float>(rect.y + rect.h) * inv;
+        r.vertex(a, u0, v0, color);
+        r.vertex({b.x, a.y}, u1, v0, color);
+        r.vertex(b, u1, v1, color);
+        r.vertex(a, u0, v0, color);
+        r.vertex(b, u1, v1, color);
+        r.vertex({a.x, b.y}, u0, v1, color);
+    }
+    return s * Vec2{static_cast<float>(width), static_cast<float>(height)};
+}
+
+Vec2 Renderer::world_to_image(Vec2 world) const { return impl_->to_image(world); }
 
 const Image& Renderer::end_frame() {
     Impl& r = *impl_;

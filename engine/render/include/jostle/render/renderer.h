@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "jostle/collision.h"
 #include "jostle/core/vec2.h"
@@ -73,6 +74,13 @@ public:
     void fill_shape(const Shape& shape, Color color, float thickness = 1.0f);
     void outline_shape(const Shape& shape, Color color, float thickness = 1.0f);
     void draw_line(Vec2 a, Vec2 b, Color color, float thickness = 1.0f);
+    // Text in the built-in 5x7 pixel font (printable ASCII; anything else shows as '?';
+    // '\n' starts a new line), its top-left at `image_position` in image pixels (not moved
+    // by the camera: HUDs, frame numbers; use world_to_image for labels on world things),
+    // each font pixel `scale` x `scale` image pixels. Returns the text's size in image pixels.
+    Vec2 draw_text(Vec2 image_position, std::string_view text, Color color, int scale = 1);
+    // Where a world point lands in the current frame's image (the camera's mapping).
+    Vec2 world_to_image(Vec2 world) const;
     // Renders what was drawn since begin_frame. The image stays valid until the next end_frame.
     const Image& end_frame();
 
