@@ -6,6 +6,8 @@
 #include "font.h"
 #include "jostle/render/renderer.h"
 
+#include "render/render_test_util.h"
+
 using namespace jostle;
 
 namespace {
@@ -16,10 +18,7 @@ constexpr Color kGreen{0, 255, 0, 255};
 constexpr Color kBlue{0, 0, 255, 255};
 constexpr Color kWhite{255, 255, 255, 255};
 
-Color at(const Image& im, int x, int y) {
-    const std::uint8_t* p = im.rgba.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(im.width) + static_cast<std::size_t>(x)) * 4u;
-    return {p[0], p[1], p[2], p[3]};
-}
+Color at(const Image& im, int x, int y) { return pixel_at(im, x, y); }
 
 // A w x h sprite whose four quadrants are red (top-left), green (top-right), blue
 // (bottom-left) and white (bottom-right).
@@ -37,10 +36,6 @@ Image quadrant_sprite(int w, int h) {
 
 }  // namespace
 
-namespace jostle {
-// How gtest prints a Color in a failure message.
-void PrintTo(Color c, std::ostream* os) { *os << "(" << int{c.r} << "," << int{c.g} << "," << int{c.b} << "," << int{c.a} << ")"; }
-}  // namespace jostle
 
 TEST(RendererNull, ImageIsTheClearColourAndNoDrawCalls) {
     Renderer r({.backend = RenderBackend::null});

@@ -53,4 +53,10 @@ std::optional<RayHit> World::cast_segment(Vec2 from, Vec2 to, std::uint32_t laye
     return best;
 }
 
+std::optional<Aabb> World::broadphase_bounds(EntityId id) const {
+    const detail::Slot* s = impl_->find(id);
+    if (s == nullptr || s->proxy < 0) return std::nullopt;
+    return impl_->broadphase.fat_bounds(s->proxy);
+}
+
 }  // namespace jostle

@@ -291,6 +291,9 @@ public:
     std::span<const Event> events() const;       // the last step's, in order
     std::span<const Contact> contacts() const;   // pairs in contact after the last step
     std::span<const SweptPath> swept_paths() const;
+    // The broadphase's fattened bounds of an entity (for the debug overlay); nullopt when the
+    // id is stale or its collider meets nothing (non-finite).
+    std::optional<Aabb> broadphase_bounds(EntityId id) const;
     using EventHandler = std::function<void(World&, const Event&)>;
     void set_event_handler(EventHandler handler);
 
