@@ -314,8 +314,13 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
 
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
     for (const NarrowContact* c : contacts_in) edges.emplace_back(c->pair.a, c->pair.b);
-    // Pairs that only the pushes bring together still need their immovable side at level 0.
-    for (const Pair& p : push_pairs) edges.emplace_back(p.a, p.a);
+    // Pairs that only the pushes bring together still need their immovable bodies at level 0
+    // (both sides: an unseeded static body would look "above" the dynamic one and make it
+    // stand still under shock propagation). Self-edges seed a body without linking it.
+    for (const Pair& p : push_pairs) {
+        edges.emplace_back(p.a, p.a);
+        edges.emplace_back(p.b, p.b);
+    }
     const std::vector<int> level = ground_levels(slots, edges);
     const auto low_level = [&](std::uint32_t a, std::uint32_t b) { return std::min(level[a], level[b]); };
 
