@@ -1,18 +1,20 @@
-// png_io.cpp: reading any PNG as RGBA8 and writing RGBA8 PNGs atomically, with libpng.
+// png_io.cpp: reading any PNG as RGBA8 and encoding RGBA8 PNGs (in memory, then written
+// atomically by AtomicFile), with libpng.
 // libpng reports errors by longjmp. Every setjmp sits in a small function whose frame holds
 // only trivially destructible objects, so a longjmp never skips a C++ destructor; whatever
-// owns memory or a file (PngRead, PngWrite, TempFile) lives in the caller and cleans up there.
+// owns memory or a file (PngRead, PngWrite) lives in the caller and cleans up there.
 #include "jostle/render/png_io.h"
 
-#include <fcntl.h>
 #include <png.h>
-#include <unistd.h>
+#include <zlib.h>
 
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <new>
 
+#include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 
 namespace jostle {
@@ -42,9 +44,13 @@ void on_png_warning(png_structp, png_const_charp) {}
 // Reading
 // ---------------------------------------------------------------------------------------
 
-// Owns the file and the libpng read structures.
+// Owns the file and the libpng read structures. The bytes come from `file`, or from
+// memory (`data`, `size`, read position `at`) when file is null.
 struct PngRead {
     std::FILE* file = nullptr;
+    const std::uint8_t* data = nullptr;
+    std::size_t size = 0;
+    std::size_t at = 0;
     png_structp png = nullptr;
     png_infop info = nullptr;
     PngStatus status{};
@@ -58,11 +64,17 @@ struct PngRead {
     }
 };
 
-// fread callback: tells a truncated file from a failed read.
-void read_from_file(png_structp png, png_bytep data, png_size_t length) {
-    auto* file = static_cast<std::FILE*>(png_get_io_ptr(png));
-    if (std::fread(data, 1, length, file) != length) {
-        png_error(png, std::ferror(file) ? "read error" : "unexpected end of file (truncated)");
+// Read callback: tells a truncated file from a failed read.
+void read_bytes(png_structp png, png_bytep data, png_size_t length) {
+    auto* r = static_cast<PngRead*>(png_get_io_ptr(png));
+    if (r->file == nullptr) {
+        if (r->size - r->at < length) png_error(png, "unexpected end of file (truncated)");
+        std::memcpy(data, r->data + r->at, length);
+        r->at += length;
+        return;
+    }
+    if (std::fread(data, 1, length, r->file) != length) {
+        png_error(png, std::ferror(r->file) ? "read error" : "unexpected end of file (truncated)");
     }
 }
 
@@ -70,7 +82,7 @@ void read_from_file(png_structp png, png_bytep data, png_size_t length) {
 // image size. Returns false (message in r.status) on a libpng error.
 bool read_png_header(PngRead& r, png_uint_32* width, png_uint_32* height) {
     if (setjmp(png_jmpbuf(r.png))) return false;
-    png_set_read_fn(r.png, r.file, read_from_file);
+    png_set_read_fn(r.png, &r, read_bytes);
     png_set_sig_bytes(r.png, 8);
     // libpng's own size limit (1e6 per side by default) would fail inside png_read_info with
     // a less useful message; read_png checks kMaxImageSide itself right after this.
@@ -110,22 +122,13 @@ bool read_png_pixels(PngRead& r, png_bytep* rows, png_size_t row_bytes) {
 // Writing
 // ---------------------------------------------------------------------------------------
 
-// fwrite/fflush callbacks that keep errno, so "No space left on device" reaches the message.
-void write_to_file(png_structp png, png_bytep data, png_size_t length) {
-    auto* file = static_cast<std::FILE*>(png_get_io_ptr(png));
-    if (std::fwrite(data, 1, length, file) != length) {
-        static_cast<PngStatus*>(png_get_error_ptr(png))->saved_errno = errno;
-        png_error(png, "write error");
-    }
+// Appends libpng's output to a byte vector; there is nothing to flush.
+void write_to_memory(png_structp png, png_bytep data, png_size_t length) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(png));
+    out->insert(out->end(), data, data + length);
 }
 
-void flush_file(png_structp png) {
-    auto* file = static_cast<std::FILE*>(png_get_io_ptr(png));
-    if (std::fflush(file) != 0) {
-        static_cast<PngStatus*>(png_get_error_ptr(png))->saved_errno = errno;
-        png_error(png, "write error");
-    }
-}
+void flush_nothing(png_structp) {}
 
 // Owns the libpng write structures.
 struct PngWrite {
@@ -141,12 +144,18 @@ struct PngWrite {
     }
 };
 
-// Encodes RGBA8 rows into `file`. Returns false (message in w.status) on a libpng error.
-bool write_png_data(PngWrite& w, std::FILE* file, png_bytep* rows, png_uint_32 width, png_uint_32 height,
-                    int compression_level) {
+// Encodes RGBA8 rows into `out`. Returns false (message in w.status) on a libpng error.
+bool write_png_data(PngWrite& w, std::vector<std::uint8_t>* out, png_bytep* rows, png_uint_32 width,
+                    png_uint_32 height, const PngEncoding& encoding) {
     if (setjmp(png_jmpbuf(w.png))) return false;
-    png_set_write_fn(w.png, file, write_to_file, flush_file);
-    png_set_compression_level(w.png, compression_level);
+    png_set_write_fn(w.png, out, write_to_memory, flush_nothing);
+    if (encoding.compression_level >= 0) png_set_compression_level(w.png, encoding.compression_level);
+    if (encoding.filter == PngFilter::none) png_set_filter(w.png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
+    if (encoding.filter == PngFilter::sub) png_set_filter(w.png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+    if (encoding.filter == PngFilter::up) png_set_filter(w.png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
+    if (encoding.filter == PngFilter::paeth) png_set_filter(w.png, PNG_FILTER_TYPE_BASE, PNG_FILTER_PAETH);
+    if (encoding.filter == PngFilter::adaptive) png_set_filter(w.png, PNG_FILTER_TYPE_BASE, PNG_ALL_FILTERS);
+    if (encoding.rle) png_set_compression_strategy(w.png, Z_RLE);
     png_set_IHDR(w.png, w.info, width, height, 8, PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(w.png, w.info);
@@ -155,43 +164,33 @@ bool write_png_data(PngWrite& w, std::FILE* file, png_bytep* rows, png_uint_32 w
     return true;
 }
 
-// A temporary file next to the target; removed on destruction unless renamed into place.
-struct TempFile {
-    std::string path;
-    std::FILE* file = nullptr;
-    bool renamed = false;
+// Reads the header and the pixels of the PNG whose signature `r` has just consumed; `name`
+// (a path, or what the bytes are) goes into the error messages.
+Image decode_after_signature(PngRead& r, const std::string& name) {
+    r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r.status, on_png_error, on_png_warning);
+    if (r.png != nullptr) r.info = png_create_info_struct(r.png);
+    if (r.png == nullptr || r.info == nullptr) fail(name, "cannot read: out of memory");
 
-    TempFile() = default;
-    TempFile(const TempFile&) = delete;
-    TempFile& operator=(const TempFile&) = delete;
-    ~TempFile() {
-        if (file != nullptr) std::fclose(file);
-        if (!path.empty() && !renamed) ::unlink(path.c_str());
+    png_uint_32 width = 0;
+    png_uint_32 height = 0;
+    if (!read_png_header(r, &width, &height)) fail(name, std::string("corrupt PNG: ") + r.status.message);
+    if (width > static_cast<png_uint_32>(kMaxImageSide) || height > static_cast<png_uint_32>(kMaxImageSide) ||
+        std::int64_t{width} * std::int64_t{height} > kMaxImagePixels) {
+        fail(name, "image is " + std::to_string(width) + " x " + std::to_string(height) +
+                       " pixels; the limit is " + std::to_string(kMaxImageSide) + " x " +
+                       std::to_string(kMaxImageSide) + " and " + std::to_string(kMaxImagePixels) +
+                       " pixels in total");
     }
-};
 
-// Creates "<path>.<pid>.<n>.tmp" with O_EXCL (so two writers never share one), mode 0666
-// minus the umask, like any new file.
-void create_temp_file(const std::string& path, TempFile* temp) {
-    const std::string prefix = path + "." + std::to_string(::getpid()) + ".";
-    for (int attempt = 0; attempt < 100; ++attempt) {
-        std::string name = prefix + std::to_string(attempt) + ".tmp";
-        const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd < 0) {
-            if (errno == EEXIST) continue;
-            const int e = errno;
-            fail(path, "cannot write: cannot create temporary file " + name + ": " + std::strerror(e));
-        }
-        temp->path = std::move(name);
-        temp->file = ::fdopen(fd, "wb");
-        if (temp->file == nullptr) {
-            const int e = errno;
-            ::close(fd);
-            fail(path, std::string("cannot write: ") + std::strerror(e));
-        }
-        return;
-    }
-    fail(path, "cannot write: 100 temporary files " + prefix + "*.tmp already exist");
+    Image image;
+    image.width = static_cast<int>(width);
+    image.height = static_cast<int>(height);
+    const std::size_t row_bytes = std::size_t{width} * 4;
+    image.rgba.resize(row_bytes * height);
+    std::vector<png_bytep> rows(height);
+    for (std::size_t y = 0; y < height; ++y) rows[y] = image.rgba.data() + y * row_bytes;
+    if (!read_png_pixels(r, rows.data(), row_bytes)) fail(name, std::string("corrupt PNG: ") + r.status.message);
+    return image;
 }
 
 }  // namespace
@@ -212,80 +211,53 @@ Image read_png(const std::string& path) {
     if (got != sizeof signature || png_sig_cmp(signature, 0, sizeof signature) != 0) {
         fail(path, "not a PNG file (no PNG signature)");
     }
+    return decode_after_signature(r, path);
+}
 
-    r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r.status, on_png_error, on_png_warning);
-    if (r.png != nullptr) r.info = png_create_info_struct(r.png);
-    if (r.png == nullptr || r.info == nullptr) fail(path, "cannot read: out of memory");
+Image decode_png(std::span<const std::uint8_t> bytes, const std::string& name) {
+    if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0) fail(name, "not a PNG file (no PNG signature)");
+    PngRead r;
+    r.data = bytes.data();
+    r.size = bytes.size();
+    r.at = 8;
+    return decode_after_signature(r, name);
+}
 
-    png_uint_32 width = 0;
-    png_uint_32 height = 0;
-    if (!read_png_header(r, &width, &height)) fail(path, std::string("corrupt PNG: ") + r.status.message);
-    if (width > static_cast<png_uint_32>(kMaxImageSide) || height > static_cast<png_uint_32>(kMaxImageSide) ||
-        std::int64_t{width} * std::int64_t{height} > kMaxImagePixels) {
-        fail(path, "image is " + std::to_string(width) + " x " + std::to_string(height) +
-                       " pixels; the limit is " + std::to_string(kMaxImageSide) + " x " +
-                       std::to_string(kMaxImageSide) + " and " + std::to_string(kMaxImagePixels) +
-                       " pixels in total");
-    }
+std::vector<std::uint8_t> encode_png(const Image& image, const PngEncoding& encoding) {
+    JOSTLE_ASSERT(image.width >= 1 && image.width <= kMaxImageSide && image.height >= 1 &&
+                      image.height <= kMaxImageSide,
+                  "encode_png: image sides must be in 1..kMaxImageSide");
+    JOSTLE_ASSERT(std::int64_t{image.width} * image.height <= kMaxImagePixels,
+                  "encode_png: image has more than kMaxImagePixels pixels");
+    const std::size_t row_bytes = static_cast<std::size_t>(image.width) * 4;
+    JOSTLE_ASSERT(image.rgba.size() == row_bytes * static_cast<std::size_t>(image.height),
+                  "encode_png: rgba.size() must be width * height * 4");
+    JOSTLE_ASSERT(encoding.compression_level >= -1 && encoding.compression_level <= 9,
+                  "encode_png: compression level must be in 0..9 (or -1, libpng's default)");
 
-    Image image;
-    image.width = static_cast<int>(width);
-    image.height = static_cast<int>(height);
-    const std::size_t row_bytes = std::size_t{width} * 4;
-    image.rgba.resize(row_bytes * height);
-    std::vector<png_bytep> rows(height);
-    for (std::size_t y = 0; y < height; ++y) rows[y] = image.rgba.data() + y * row_bytes;
-    if (!read_png_pixels(r, rows.data(), row_bytes)) fail(path, std::string("corrupt PNG: ") + r.status.message);
-    return image;
+    std::vector<std::uint8_t> out;
+    // Raw size plus a little: one reservation covers all but incompressible noise.
+    out.reserve(row_bytes * static_cast<std::size_t>(image.height) / 2 + 1024);
+    PngWrite w;
+    w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w.status, on_png_error, on_png_warning);
+    if (w.png != nullptr) w.info = png_create_info_struct(w.png);
+    if (w.png == nullptr || w.info == nullptr) throw std::bad_alloc();
+    // libpng does not modify the rows it writes; its API just lacks the const.
+    std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
+    auto* pixels = const_cast<png_bytep>(image.rgba.data());
+    for (std::size_t y = 0; y < rows.size(); ++y) rows[y] = pixels + y * row_bytes;
+    const bool ok = write_png_data(w, &out, rows.data(), static_cast<png_uint_32>(image.width),
+                                   static_cast<png_uint_32>(image.height), encoding);
+    // Encoding into memory fails only when memory runs out.
+    if (!ok) throw std::bad_alloc();
+    return out;
 }
 
 void write_png_atomic(const std::string& path, const Image& image, int compression_level) {
-    JOSTLE_ASSERT(image.width >= 1 && image.width <= kMaxImageSide && image.height >= 1 &&
-                      image.height <= kMaxImageSide,
-                  "write_png_atomic: image sides must be in 1..kMaxImageSide");
-    JOSTLE_ASSERT(std::int64_t{image.width} * image.height <= kMaxImagePixels,
-                  "write_png_atomic: image has more than kMaxImagePixels pixels");
-    const std::size_t row_bytes = static_cast<std::size_t>(image.width) * 4;
-    JOSTLE_ASSERT(image.rgba.size() == row_bytes * static_cast<std::size_t>(image.height),
-                  "write_png_atomic: rgba.size() must be width * height * 4");
     JOSTLE_ASSERT(compression_level >= 0 && compression_level <= 9,
                   "write_png_atomic: compression level must be in 0..9");
-
-    TempFile temp;
-    create_temp_file(path, &temp);
-
-    {
-        PngWrite w;
-        w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w.status, on_png_error, on_png_warning);
-        if (w.png != nullptr) w.info = png_create_info_struct(w.png);
-        if (w.png == nullptr || w.info == nullptr) fail(path, "cannot write: out of memory");
-        // libpng does not modify the rows it writes; its API just lacks the const.
-        std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
-        auto* pixels = const_cast<png_bytep>(image.rgba.data());
-        for (std::size_t y = 0; y < rows.size(); ++y) rows[y] = pixels + y * row_bytes;
-        if (!write_png_data(w, temp.file, rows.data(), static_cast<png_uint_32>(image.width),
-                            static_cast<png_uint_32>(image.height), compression_level)) {
-            const int e = w.status.saved_errno;
-            fail(path, std::string("cannot write: ") + (e != 0 ? std::strerror(e) : w.status.message));
-        }
-    }
-
-    // Flush to the disk before the rename, so the name never points at data still in flight.
-    if (std::fflush(temp.file) != 0 || ::fsync(::fileno(temp.file)) != 0) {
-        const int e = errno;
-        fail(path, std::string("cannot write: ") + std::strerror(e));
-    }
-    const int closed = std::fclose(temp.file);
-    temp.file = nullptr;
-    if (closed != 0) {
-        const int e = errno;
-        fail(path, std::string("cannot write: ") + std::strerror(e));
-    }
-    if (std::rename(temp.path.c_str(), path.c_str()) != 0) {
-        const int e = errno;
-        fail(path, std::string("cannot write: cannot rename ") + temp.path + " to it: " + std::strerror(e));
-    }
-    temp.renamed = true;
+    const std::vector<std::uint8_t> bytes = encode_png(image, PngEncoding{.compression_level = compression_level});
+    write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace jostle

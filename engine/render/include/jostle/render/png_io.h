@@ -1,9 +1,11 @@
 // jostle/render/png_io.h: PNG files as straight (not premultiplied) RGBA8 images, by libpng.
 // read_png accepts every PNG colour type and bit depth and converts it to RGBA8;
-// write_png_atomic writes a temporary file in the same folder and renames it over the target.
+// write_png_atomic writes a temporary file in the same folder and renames it over the target;
+// encode_png makes the PNG bytes in memory (for animations and benchmarks).
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,9 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
 // than the limits above.
 Image read_png(const std::string& path);
 
+// The same, from a PNG file's bytes in memory; `name` says what they are in error messages.
+Image decode_png(std::span<const std::uint8_t> bytes, const std::string& name);
+
 // Writes `image` as an 8-bit RGBA PNG (zlib compression_level 0..9; 1 is fast and small
 // enough for frames). The data goes to a temporary file in the same folder, which is flushed,
 // synced and then renamed over `path`: a crash leaves either the old file or the complete new
@@ -39,5 +44,26 @@ Image read_png(const std::string& path);
 // kMaxImageSide, more than kMaxImagePixels, rgba.size() != width * height * 4) or a level
 // outside 0..9 is a programming error (assert).
 void write_png_atomic(const std::string& path, const Image& image, int compression_level = 1);
+
+// The PNG row filter (each row is predicted from its neighbours before zlib sees it).
+enum class PngFilter {
+    libpng_default,  // what libpng picks: adaptive over all five filters for RGBA
+    none,
+    sub,             // from the pixel on the left
+    up,              // from the pixel above
+    paeth,
+    adaptive,        // per row, the filter whose output looks smallest
+};
+
+// How encode_png compresses. The zero value is jostle's frame setting.
+struct PngEncoding {
+    int compression_level = 1;  // zlib 0..9, or -1 for libpng's default (6)
+    PngFilter filter = PngFilter::libpng_default;
+    bool rle = false;           // zlib's Z_RLE strategy: run lengths only, fastest
+};
+
+// Encodes `image` as an 8-bit RGBA PNG file in memory. Only memory exhaustion can fail it
+// (std::bad_alloc); a malformed image is a programming error (assert), as for write_png_atomic.
+std::vector<std::uint8_t> encode_png(const Image& image, const PngEncoding& encoding = {});
 
 }  // namespace jostle

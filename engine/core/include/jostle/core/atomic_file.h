@@ -1,0 +1,46 @@
+// jostle/core/atomic_file.h: writing a file so that it is either the old file or the whole new
+// one, never half written. The bytes go to a temporary file in the same folder
+// ("<path>.<pid>.<n>.tmp"), which is flushed, synced and then renamed over the target by
+// commit(). Without commit() (an error, an exception unwinding) the temporary file is removed
+// and the target is untouched. Every error is an InputError naming the target path:
+// "out/frame_000001.png: cannot write: No space left on device".
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace jostle {
+
+class AtomicFile {
+public:
+    // Creates the temporary file (with O_EXCL, mode 0666 minus the umask). Throws InputError.
+    explicit AtomicFile(std::string path);
+    ~AtomicFile();
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    void write(const void* data, std::size_t size);
+    void write(std::string_view bytes) { write(bytes.data(), bytes.size()); }
+    // The write position, and moving it (to patch a header written earlier).
+    std::int64_t tell();
+    void seek(std::int64_t offset);
+    // Flushes, syncs, closes and renames the temporary file over the target.
+    void commit();
+
+    const std::string& path() const { return path_; }
+    const std::string& temp_path() const { return temp_path_; }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const;
+    std::string path_;
+    std::string temp_path_;
+    std::FILE* file_ = nullptr;
+    bool committed_ = false;
+};
+
+// The whole file at once: AtomicFile, write, commit.
+void write_file_atomic(const std::string& path, std::string_view bytes);
+
+}  // namespace jostle
