@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "imgdiff.h"
+#include "play.h"
 #include "query.h"
 
 namespace {
@@ -24,6 +25,9 @@ constexpr Command kCommands[] = {
     {"query", "answer collision queries: JSON lines on stdin, one JSON result per line on stdout",
      jostle::query_help,
      [](std::span<const std::string_view> args) { return jostle::query_command(args, std::cin, std::cout, std::cerr); }},
+    {"play", "replay a scenario: fast-forward, or rendering frames, a contact sheet, an animation, a trace",
+     jostle::play_help,
+     [](std::span<const std::string_view> args) { return jostle::play_command(args, std::cout, std::cerr); }},
     {"imgdiff", "compare two PNG images within a tolerance (exit 0 match, 1 differ), optionally writing a diff picture",
      jostle::imgdiff_help,
      [](std::span<const std::string_view> args) { return jostle::imgdiff_command(args, std::cout, std::cerr); }},

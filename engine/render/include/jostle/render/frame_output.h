@@ -29,6 +29,7 @@ public:
     // Keep every nth frame of each range, counted from the range's first frame (n >= 1;
     // asserted). "10-20" every 5 is 10, 15, 20; "all" every 5 is 0, 5, 10, ...
     void set_every(std::int64_t n);
+    std::int64_t every() const { return every_; }
 
     bool contains(std::int64_t frame) const;
     // The last frame wanted, or nullopt when a range is open (runs to the end).

@@ -1,0 +1,399 @@
+// arena.cpp: the arena game's rules, drawing and bookkeeping (see arena.h).
+#include "arena.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "jostle/core/error.h"
+#include "jostle/core/hash.h"
+#include "jostle/render/overlay.h"
+#include "level.h"
+
+#ifndef JOSTLE_SOURCE_ASSETS
+#define JOSTLE_SOURCE_ASSETS "assets"
+#endif
+
+namespace jostle::game {
+namespace {
+
+enum class Kind : std::uint8_t { player, wall, crate, rock, pickup, cannon, bullet, ball };
+constexpr const char* kKindNames[] = {"player", "wall", "crate", "rock", "pickup", "cannon", "bullet", "ball"};
+constexpr const char* kEventNames[] = {"fire", "bullet_hit", "rock_hit", "pickup", "cannon_fire", "player_hit"};
+enum GameEvent : int { kFire, kBulletHit, kRockHit, kPickup, kCannonFire, kPlayerHit };
+constexpr const char* kVariableNames[] = {"score", "shots", "balls"};
+
+std::string read_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot open the level file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::string hex16(std::uint64_t v) {
+    static const char* digits = "0123456789abcdef";
+    std::string out(16, '0');
+    for (int i = 15; i >= 0; --i) {
+        out[static_cast<std::size_t>(i)] = digits[v & 15u];
+        v >>= 4;
+    }
+    return out;
+}
+
+// Shortest text that reads back as the same float: traces compare exact values.
+std::string float_text(float v) {
+    char buffer[32];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
+    return ec == std::errc() ? std::string(buffer, end) : std::string("?");
+}
+
+struct Thing {
+    EntityId id;
+    std::string name;
+    Kind kind = Kind::wall;
+    bool alive = true;
+    int lifetime = -1;        // ticks left; -1 forever
+    int period = 0;           // cannons
+    float speed = 0.0f;       // cannons
+};
+
+// Colours of the game's own drawing (the overlay has its own).
+constexpr Color kBackground{24, 26, 32, 255};
+constexpr Color kWallColor{110, 110, 120, 255};
+constexpr Color kCrateColor{150, 105, 60, 255};
+constexpr Color kRockColor{120, 112, 100, 255};
+constexpr Color kPickupColor{250, 210, 60, 255};
+constexpr Color kCannonColor{150, 40, 40, 255};
+constexpr Color kBallColor{255, 140, 40, 255};
+constexpr Color kBulletColor{255, 255, 200, 255};
+constexpr Color kPlayerColor{90, 180, 255, 255};
+constexpr Color kHudColor{230, 230, 230, 255};
+
+class ArenaSimulation : public Simulation {
+public:
+    ArenaSimulation(const Level& level, const Rules& rules, std::uint64_t seed, int tick_rate)
+        : level_(level), rules_(rules), world_(WorldDesc{.gravity = {0.0f, 0.0f}, .seed = seed}),
+          dt_(1.0f / static_cast<float>(tick_rate)) {
+        // The ship: a triangle pointing along +x.
+        const Vec2 ship[] = {{14.0f, 0.0f}, {-10.0f, -9.0f}, {-10.0f, 9.0f}};
+        player_ = add(Thing{.name = "player", .kind = Kind::player},
+                      EntityDesc{.kind = BodyKind::dynamic, .position = level.player_start, .angle = level.player_angle,
+                                 .collider = Collider::polygon(*make_polygon(ship)), .inverse_mass = 0.25f});
+        for (const LevelThing& t : level.things) {
+            switch (t.kind) {
+                case LevelThing::Kind::wall: {
+                    const Vec2 half = (t.size - t.position) * 0.5f;
+                    add(Thing{.name = t.name, .kind = Kind::wall},
+                        EntityDesc{.kind = BodyKind::static_body, .position = t.position + half, .collider = Collider::aabb(half)});
+                    break;
+                }
+                case LevelThing::Kind::crate:
+                    add(Thing{.name = t.name, .kind = Kind::crate},
+                        EntityDesc{.kind = BodyKind::dynamic, .position = t.position, .angle = t.angle,
+                                   .collider = Collider::box(t.size * 0.5f), .inverse_mass = 0.5f});
+                    break;
+                case LevelThing::Kind::rock_circle:
+                    add(Thing{.name = t.name, .kind = Kind::rock},
+                        EntityDesc{.kind = BodyKind::dynamic, .position = t.position, .collider = Collider::circle(t.radius)});
+                    break;
+                case LevelThing::Kind::rock_polygon:
+                    add(Thing{.name = t.name, .kind = Kind::rock},
+                        EntityDesc{.kind = BodyKind::dynamic, .position = t.position, .collider = Collider::polygon(t.polygon)});
+                    break;
+                case LevelThing::Kind::pickup:
+                    add(Thing{.name = t.name, .kind = Kind::pickup},
+                        EntityDesc{.kind = BodyKind::trigger, .position = t.position, .collider = Collider::circle(t.radius)});
+                    break;
+                case LevelThing::Kind::cannon:
+                    add(Thing{.name = t.name, .kind = Kind::cannon, .period = t.period, .speed = t.speed},
+                        EntityDesc{.kind = BodyKind::static_body, .position = t.position, .angle = t.angle,
+                                   .collider = Collider::circle(10.0f)});
+                    break;
+            }
+        }
+    }
+
+    void tick(InputFrame input) override {
+        drive_player(input);
+        fire(input);
+        fire_cannons();
+        drag();
+        world_.step(dt_);
+        handle_events();
+        age();
+        ++ticks_;
+    }
+
+    std::int64_t ticks_done() const override { return ticks_; }
+
+    std::uint64_t state_hash() const override {
+        Hasher h;
+        h.u64(world_.state_hash());
+        h.u64(static_cast<std::uint64_t>(ticks_));
+        h.u64(static_cast<std::uint64_t>(score_));
+        h.u64(static_cast<std::uint64_t>(shots_));
+        h.u64(static_cast<std::uint64_t>(balls_));
+        h.u32(static_cast<std::uint32_t>(cooldown_));
+        h.u32(events_seen_);
+        h.u64(things_.size());
+        for (const Thing& t : things_) {
+            h.u32(t.alive ? 1u : 0u);
+            h.u32(static_cast<std::uint32_t>(t.lifetime));
+        }
+        return h.value();
+    }
+
+    const World& world() const override { return world_; }
+
+    std::optional<Vec2> entity_position(std::string_view name) const override {
+        for (const Thing& t : things_) {
+            if (t.alive && t.name == name) return world_.get(t.id)->position;
+        }
+        return std::nullopt;
+    }
+
+    std::int64_t count(std::string_view kind) const override {
+        std::int64_t n = 0;
+        for (const Thing& t : things_) n += t.alive && kind == kKindNames[static_cast<int>(t.kind)] ? 1 : 0;
+        return n;
+    }
+
+    std::optional<double> variable(std::string_view name) const override {
+        if (name == "score") return static_cast<double>(score_);
+        if (name == "shots") return static_cast<double>(shots_);
+        if (name == "balls") return static_cast<double>(balls_);
+        return std::nullopt;
+    }
+
+    bool event_happened(std::string_view name) const override {
+        for (int i = 0; i < static_cast<int>(std::size(kEventNames)); ++i) {
+            if (name == kEventNames[i]) return (events_seen_ >> i) & 1u;
+        }
+        return false;
+    }
+
+    std::vector<std::string> kinds() const override { return {std::begin(kKindNames), std::end(kKindNames)}; }
+    std::vector<std::string> variables() const override { return {std::begin(kVariableNames), std::end(kVariableNames)}; }
+    std::vector<std::string> events() const override { return {std::begin(kEventNames), std::end(kEventNames)}; }
+
+    std::vector<EntityDump> dump() const override {
+        std::vector<EntityDump> out;
+        out.push_back(EntityDump{"game",
+                                 {{"score", std::to_string(score_)},
+                                  {"shots", std::to_string(shots_)},
+                                  {"balls", std::to_string(balls_)},
+                                  {"cooldown", std::to_string(cooldown_)}}});
+        for (const Thing& t : things_) {
+            if (!t.alive || t.kind == Kind::wall) continue;  // walls never move
+            const EntityDesc& e = *world_.get(t.id);
+            EntityDump d{t.name,
+                         {{"kind", kKindNames[static_cast<int>(t.kind)]},
+                          {"x", float_text(e.position.x)},
+                          {"y", float_text(e.position.y)},
+                          {"angle", float_text(e.angle)},
+                          {"vx", float_text(e.velocity.x)},
+                          {"vy", float_text(e.velocity.y)}}};
+            if (t.lifetime >= 0) d.fields.push_back({"lifetime", std::to_string(t.lifetime)});
+            out.push_back(std::move(d));
+        }
+        return out;
+    }
+
+    Vec2 level_size() const override { return level_.size; }
+
+    void draw(Renderer& renderer, const DrawOptions& options) const override {
+        renderer.fill_rect(Aabb{{0.0f, 0.0f}, level_.size}, kBackground);
+        for (const Thing& t : things_) {
+            if (!t.alive) continue;
+            const Shape shape = world_.shape_of(t.id);
+            switch (t.kind) {
+                case Kind::wall: renderer.fill_shape(shape, kWallColor); break;
+                case Kind::crate:
+                    renderer.fill_shape(shape, kCrateColor);
+                    renderer.outline_shape(shape, Color{90, 60, 30, 255}, 2.0f);
+                    break;
+                case Kind::rock: renderer.fill_shape(shape, kRockColor); break;
+                case Kind::pickup: renderer.fill_shape(shape, kPickupColor); break;
+                case Kind::cannon: {
+                    renderer.fill_shape(shape, kCannonColor);
+                    const EntityDesc& e = *world_.get(t.id);
+                    const Vec2 dir{std::cos(e.angle), std::sin(e.angle)};
+                    renderer.draw_line(e.position, e.position + dir * 16.0f, kCannonColor, 6.0f);
+                    break;
+                }
+                case Kind::ball: renderer.fill_shape(shape, kBallColor); break;
+                case Kind::bullet: {
+                    const EntityDesc& e = *world_.get(t.id);
+                    renderer.draw_line(e.position - e.velocity * (dt_ * 0.5f), e.position, kBulletColor, 2.0f);
+                    break;
+                }
+                case Kind::player: renderer.fill_shape(shape, kPlayerColor); break;
+            }
+        }
+        if (options.overlay) draw_overlay(renderer, world_);
+        if (options.hud) {
+            // The tick just simulated, which is also the frame's number.
+            const std::string hud = "SCORE " + std::to_string(score_) + "   TICK " + std::to_string(ticks_ - 1);
+            renderer.draw_text(Vec2{8.0f, 8.0f}, hud, kHudColor, 2);
+        }
+    }
+
+private:
+    std::size_t add(Thing thing, EntityDesc desc) {
+        desc.user_data = things_.size();
+        thing.id = world_.create(desc);
+        things_.push_back(std::move(thing));
+        return things_.size() - 1;
+    }
+
+    Thing* thing_of(std::uint64_t user_data) {
+        return user_data < things_.size() ? &things_[static_cast<std::size_t>(user_data)] : nullptr;
+    }
+
+    void drive_player(InputFrame input) {
+        const EntityDesc& p = *world_.get(things_[player_].id);
+        const float turn = (input.holds(kRight) ? 1.0f : 0.0f) - (input.holds(kLeft) ? 1.0f : 0.0f);
+        const float angle = p.angle + turn * rules_.turn_speed * dt_;
+        const Vec2 forward{std::cos(angle), std::sin(angle)};
+        Vec2 velocity = p.velocity * rules_.coast;
+        if (input.holds(kUp)) velocity = forward * rules_.drive_speed;
+        else if (input.holds(kDown)) velocity = forward * -rules_.reverse_speed;
+        world_.set_angle(things_[player_].id, angle);
+        world_.set_angular_velocity(things_[player_].id, 0.0f);
+        world_.set_velocity(things_[player_].id, velocity);
+    }
+
+    void fire(InputFrame input) {
+        if (cooldown_ > 0) --cooldown_;
+        if (!input.holds(kFire) || cooldown_ > 0) return;
+        const EntityDesc& p = *world_.get(things_[player_].id);
+        const Vec2 forward{std::cos(p.angle), std::sin(p.angle)};
+        ++shots_;
+        add(Thing{.name = "bullet#" + std::to_string(shots_), .kind = Kind::bullet, .lifetime = rules_.bullet_lifetime},
+            EntityDesc{.kind = BodyKind::bullet, .position = p.position + forward * 15.0f,
+                       .velocity = forward * rules_.bullet_speed, .ignore = things_[player_].id});
+        cooldown_ = rules_.fire_cooldown;
+        events_seen_ |= 1u << kFire;
+    }
+
+    void fire_cannons() {
+        const std::size_t count = things_.size();  // balls added below are not cannons
+        for (std::size_t i = 0; i < count; ++i) {
+            const Thing& t = things_[i];
+            if (t.kind != Kind::cannon || !t.alive || (ticks_ + 1) % t.period != 0) continue;
+            const EntityDesc& c = *world_.get(t.id);
+            const Vec2 dir{std::cos(c.angle), std::sin(c.angle)};
+            const float speed = t.speed;
+            const EntityId cannon = t.id;
+            ++balls_;
+            add(Thing{.name = "ball#" + std::to_string(balls_), .kind = Kind::ball, .lifetime = rules_.ball_lifetime},
+                EntityDesc{.kind = BodyKind::dynamic, .position = c.position + dir * (10.0f + rules_.ball_radius + 2.0f),
+                           .velocity = dir * speed, .collider = Collider::circle(rules_.ball_radius),
+                           .inverse_mass = 2.0f, .restitution = 0.6f, .ignore = cannon});
+            events_seen_ |= 1u << kCannonFire;
+        }
+    }
+
+    // Top-down drag: pushed crates and rocks slow down and stop.
+    void drag() {
+        for (const Thing& t : things_) {
+            if (!t.alive || (t.kind != Kind::crate && t.kind != Kind::rock)) continue;
+            const EntityDesc& e = *world_.get(t.id);
+            world_.set_velocity(t.id, e.velocity * 0.9f);
+            world_.set_angular_velocity(t.id, e.angular_velocity * 0.9f);
+        }
+    }
+
+    void handle_events() {
+        for (const Event& e : world_.events()) {
+            Thing* a = thing_of(e.a_user_data);
+            Thing* b = thing_of(e.b_user_data);
+            if (a == nullptr || b == nullptr) continue;
+            switch (e.type) {
+                case EventType::bullet_hit:
+                    events_seen_ |= 1u << kBulletHit;
+                    if (b->kind == Kind::rock) {
+                        score_ += rules_.rock_hit_score;
+                        events_seen_ |= 1u << kRockHit;
+                    }
+                    break;
+                case EventType::trigger_enter:
+                    if (a->kind == Kind::pickup && b->kind == Kind::player && a->alive) {
+                        score_ += rules_.pickup_score;
+                        events_seen_ |= 1u << kPickup;
+                        world_.destroy(a->id);
+                        a->alive = false;
+                    }
+                    break;
+                case EventType::contact_begin:
+                    if ((a->kind == Kind::ball && b->kind == Kind::player) || (a->kind == Kind::player && b->kind == Kind::ball)) {
+                        events_seen_ |= 1u << kPlayerHit;
+                    }
+                    break;
+                default: break;
+            }
+        }
+    }
+
+    void age() {
+        for (Thing& t : things_) {
+            if (!t.alive) continue;
+            if (!world_.alive(t.id)) {  // the world despawned it (a bullet that hit)
+                t.alive = false;
+                continue;
+            }
+            if (t.lifetime > 0 && --t.lifetime == 0) {
+                world_.destroy(t.id);
+                t.alive = false;
+            }
+        }
+    }
+
+    Level level_;
+    Rules rules_;
+    World world_;
+    float dt_;
+    std::vector<Thing> things_;  // in creation order; user_data is the index
+    std::size_t player_ = 0;
+    std::int64_t ticks_ = 0;
+    std::int64_t score_ = 0;
+    std::int64_t shots_ = 0;
+    std::int64_t balls_ = 0;
+    int cooldown_ = 0;
+    std::uint32_t events_seen_ = 0;
+};
+
+}  // namespace
+
+std::string default_assets_dir() {
+    if (const char* env = std::getenv("JOSTLE_ASSETS"); env != nullptr && *env != '\0') return env;
+    return JOSTLE_SOURCE_ASSETS;
+}
+
+ArenaGame::ArenaGame(std::string assets_dir, Rules rules) : assets_dir_(std::move(assets_dir)), rules_(rules) {
+    vocabulary_.actions = {"left", "right", "up", "down", "fire"};
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(assets_dir_ + "/levels", ec)) {
+        if (entry.path().extension() == ".level") vocabulary_.levels.push_back(entry.path().stem().string());
+    }
+    std::sort(vocabulary_.levels.begin(), vocabulary_.levels.end());
+}
+
+std::string ArenaGame::level_path(const std::string& level) const { return assets_dir_ + "/levels/" + level + ".level"; }
+
+std::string ArenaGame::level_hash(const std::string& level) const {
+    Hasher h;
+    h.str(read_file(level_path(level)));
+    return hex16(h.value());
+}
+
+std::unique_ptr<Simulation> ArenaGame::start(const std::string& level, std::uint64_t seed, int tick_rate) const {
+    const std::string path = level_path(level);
+    return std::make_unique<ArenaSimulation>(parse_level(read_file(path), path, level), rules_, seed, tick_rate);
+}
+
+}  // namespace jostle::game

@@ -1,0 +1,195 @@
+// level.cpp: parsing the arena's level files (format in level.h).
+#include "level.h"
+
+#include <charconv>
+#include <cmath>
+#include <set>
+
+#include "jostle/core/error.h"
+
+namespace jostle::game {
+namespace {
+
+struct Word {
+    std::string_view text;
+    int column = 0;
+};
+
+std::vector<Word> split_words(std::string_view line) {
+    std::vector<Word> words;
+    std::size_t i = 0;
+    while (i < line.size() && line[i] != '#') {
+        if (line[i] == ' ' || line[i] == '\t' || line[i] == '\r') {
+            ++i;
+            continue;
+        }
+        const std::size_t start = i;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r' && line[i] != '#') ++i;
+        words.push_back(Word{line.substr(start, i - start), static_cast<int>(start) + 1});
+    }
+    return words;
+}
+
+class LineReader {
+public:
+    LineReader(const std::string& source, int line, const std::vector<Word>& words)
+        : source_(source), line_(line), words_(words) {}
+
+    [[noreturn]] void fail(int column, const std::string& what) const {
+        throw InputError(SourceLocation{source_, line_, column}, what);
+    }
+    void expect_words(std::size_t min, std::size_t max, const char* form) const {
+        if (words_.size() < min || words_.size() > max) {
+            const Word& at = words_.size() > max ? words_[max] : words_.back();
+            fail(words_.size() > max ? at.column : at.column + static_cast<int>(at.text.size()),
+                 std::string("expected '") + form + "'");
+        }
+    }
+    float number(std::size_t i) const {
+        const Word& w = words_[i];
+        float value = 0.0f;
+        const auto [end, ec] = std::from_chars(w.text.data(), w.text.data() + w.text.size(), value);
+        if (ec != std::errc() || end != w.text.data() + w.text.size() || !std::isfinite(value) || std::fabs(value) > 1e6f) {
+            fail(w.column, "expected a number (at most 1e6 in size), got '" + std::string(w.text) + "'");
+        }
+        return value;
+    }
+    float positive(std::size_t i, const char* what) const {
+        const float v = number(i);
+        if (!(v > 0.0f)) fail(words_[i].column, std::string("expected a positive ") + what + ", got '" + std::string(words_[i].text) + "'");
+        return v;
+    }
+    int whole(std::size_t i, int min, int max, const char* what) const {
+        const Word& w = words_[i];
+        int value = 0;
+        const auto [end, ec] = std::from_chars(w.text.data(), w.text.data() + w.text.size(), value);
+        if (ec != std::errc() || end != w.text.data() + w.text.size() || value < min || value > max) {
+            fail(w.column, std::string("expected ") + what + " (" + std::to_string(min) + " .. " + std::to_string(max) +
+                               "), got '" + std::string(w.text) + "'");
+        }
+        return value;
+    }
+    const Word& word(std::size_t i) const { return words_[i]; }
+    std::size_t size() const { return words_.size(); }
+
+private:
+    const std::string& source_;
+    int line_;
+    const std::vector<Word>& words_;
+};
+
+}  // namespace
+
+Level parse_level(std::string_view text, const std::string& source, const std::string& name) {
+    Level level;
+    level.name = name;
+    bool have_size = false, have_player = false;
+    std::set<std::string, std::less<>> names;
+    int line_number = 0;
+    std::size_t at = 0;
+    if (text.empty()) throw InputError(SourceLocation{source, 1, 0}, "empty file: expected 'jostle-level 1'");
+    while (at < text.size()) {
+        std::size_t end = text.find('\n', at);
+        if (end == std::string_view::npos) end = text.size();
+        const std::string_view line = text.substr(at, end - at);
+        at = end + 1;
+        ++line_number;
+        const std::vector<Word> words = split_words(line);
+        if (line_number == 1) {
+            if (words.size() != 2 || words[0].text != "jostle-level" || words[1].text != "1") {
+                throw InputError(SourceLocation{source, 1, 1}, "expected 'jostle-level 1' as the first line");
+            }
+            continue;
+        }
+        if (words.empty()) continue;
+        const LineReader r(source, line_number, words);
+        const std::string_view head = words[0].text;
+        if (head == "size") {
+            r.expect_words(3, 3, "size WIDTH HEIGHT");
+            if (have_size) r.fail(1, "'size' given twice");
+            level.size = {r.positive(1, "width"), r.positive(2, "height")};
+            have_size = true;
+            continue;
+        }
+        if (head == "player") {
+            r.expect_words(3, 4, "player X Y [ANGLE]");
+            if (have_player) r.fail(1, "'player' given twice");
+            level.player_start = {r.number(1), r.number(2)};
+            if (words.size() == 4) level.player_angle = r.number(3);
+            have_player = true;
+            continue;
+        }
+        LevelThing thing;
+        thing.line = line_number;
+        auto take_name = [&]() {
+            if (r.size() < 2) r.expect_words(2, 2, "KIND NAME ...");
+            thing.name = std::string(r.word(1).text);
+            if (thing.name == "player" || thing.name == "game" || !names.insert(thing.name).second) {
+                r.fail(r.word(1).column, "the name '" + thing.name + "' is already taken");
+            }
+        };
+        if (head == "wall") {
+            r.expect_words(6, 6, "wall NAME X0 Y0 X1 Y1");
+            take_name();
+            thing.kind = LevelThing::Kind::wall;
+            thing.position = {r.number(2), r.number(3)};
+            thing.size = {r.number(4), r.number(5)};
+            if (thing.size.x <= thing.position.x || thing.size.y <= thing.position.y) {
+                r.fail(r.word(2).column, "expected X0 < X1 and Y0 < Y1");
+            }
+        } else if (head == "crate") {
+            r.expect_words(7, 7, "crate NAME X Y WIDTH HEIGHT ANGLE");
+            take_name();
+            thing.kind = LevelThing::Kind::crate;
+            thing.position = {r.number(2), r.number(3)};
+            thing.size = {r.positive(4, "width"), r.positive(5, "height")};
+            thing.angle = r.number(6);
+        } else if (head == "rock") {
+            if (r.size() < 3) r.expect_words(3, 3, "rock NAME circle|poly ...");
+            take_name();
+            if (r.word(2).text == "circle") {
+                r.expect_words(6, 6, "rock NAME circle X Y RADIUS");
+                thing.kind = LevelThing::Kind::rock_circle;
+                thing.position = {r.number(3), r.number(4)};
+                thing.radius = r.positive(5, "radius");
+            } else if (r.word(2).text == "poly") {
+                if (r.size() < 11 || (r.size() - 5) % 2 != 0) {
+                    r.expect_words(11, 11, "rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs");
+                }
+                thing.kind = LevelThing::Kind::rock_polygon;
+                thing.position = {r.number(3), r.number(4)};
+                std::vector<Vec2> points;
+                for (std::size_t i = 5; i + 1 < r.size(); i += 2) points.push_back({r.number(i), r.number(i + 1)});
+                std::string error;
+                const std::optional<Polygon> polygon = make_polygon(points, &error);
+                if (!polygon) r.fail(r.word(5).column, "not a convex polygon: " + error);
+                thing.polygon = *polygon;
+            } else {
+                r.fail(r.word(2).column, "expected 'circle' or 'poly', got '" + std::string(r.word(2).text) + "'");
+            }
+        } else if (head == "pickup") {
+            r.expect_words(5, 5, "pickup NAME X Y RADIUS");
+            take_name();
+            thing.kind = LevelThing::Kind::pickup;
+            thing.position = {r.number(2), r.number(3)};
+            thing.radius = r.positive(4, "radius");
+        } else if (head == "cannon") {
+            r.expect_words(7, 7, "cannon NAME X Y ANGLE PERIOD_TICKS BALL_SPEED");
+            take_name();
+            thing.kind = LevelThing::Kind::cannon;
+            thing.position = {r.number(2), r.number(3)};
+            thing.angle = r.number(4);
+            thing.period = r.whole(5, 1, 100000, "a period in ticks");
+            thing.speed = r.positive(6, "ball speed");
+        } else {
+            r.fail(1, "unknown line '" + std::string(head) +
+                          "' (expected size, player, wall, crate, rock, pickup or cannon)");
+        }
+        level.things.push_back(std::move(thing));
+    }
+    if (!have_size) throw InputError(SourceLocation{source, line_number, 0}, "the level has no 'size WIDTH HEIGHT' line");
+    if (!have_player) throw InputError(SourceLocation{source, line_number, 0}, "the level has no 'player X Y' line");
+    return level;
+}
+
+}  // namespace jostle::game

@@ -1,0 +1,204 @@
+// `jostle play`: argument parsing, progress and the summary; the replay loop itself is
+// engine/replay (jostle/replay/replay.h).
+#include "play.h"
+
+#include <unistd.h>
+
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <ostream>
+#include <string>
+
+#include "arena.h"
+#include "jostle/core/atomic_file.h"
+#include "jostle/core/error.h"
+#include "jostle/replay/replay.h"
+
+namespace jostle {
+namespace {
+
+int usage(std::ostream& err, const std::string& message) {
+    err << "jostle play: " << message << "\nRun 'jostle play --help' for usage.\n";
+    return 2;
+}
+
+std::optional<std::int64_t> parse_whole(std::string_view text, std::int64_t lo, std::int64_t hi) {
+    std::int64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc{} || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
+    return v;
+}
+
+// "640x480" -> {640, 480}, sides in 1..8192.
+std::optional<std::pair<int, int>> parse_size(std::string_view text) {
+    const std::size_t x = text.find('x');
+    if (x == std::string_view::npos) return std::nullopt;
+    const auto w = parse_whole(text.substr(0, x), 1, 8192);
+    const auto h = parse_whole(text.substr(x + 1), 1, 8192);
+    if (!w || !h) return std::nullopt;
+    return std::pair<int, int>{static_cast<int>(*w), static_cast<int>(*h)};
+}
+
+std::string ratio_text(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.1f", v);
+    return buffer;
+}
+
+}  // namespace
+
+std::string_view play_help() {
+    return R"(usage: jostle play SCENARIO [--out DIR] [--frames A-B] [--every N] [--size WxH] [--overlay]
+                   [--sheet FILE] [--anim FILE] [--trace FILE] [--quiet]
+
+Replays a scenario of the arena game: the level, the seed and the input of every tick come
+from the file, so every run is the same run. Without an output option it only simulates, as
+fast as it can. At the end it prints a summary: ticks, expectations passed, time, speed.
+
+options:
+  --out DIR         write frames as DIR/frame_NNNNNN.png (the tick number, zero-padded)
+  --frames LIST     which ticks become frames: all (default), 120, 10-20, 300- (to the end),
+                    or a comma-separated list of those
+  --every N         keep every Nth frame of each range (default 1)
+  --size WxH        frame size in pixels (default: the level's size; the level is scaled
+                    to fit and centred)
+  --overlay         draw the debug overlay: colliders, contacts and MTD arrows, paths
+  --no-hud          leave out the score and tick line
+  --sheet FILE      write a contact sheet (a PNG grid) of the selected frames, at most 64
+                    spread evenly over them
+  --anim FILE       write an animated PNG of the selected frames (plays in any browser)
+  --trace FILE      write the state hash of every tick, with a readable dump of every
+                    entity every --dump-every ticks (default 10) and at the last tick
+  --dump-every N    see --trace
+  --quiet           no progress line and no summary
+  --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
+
+Files are written atomically: an interrupted run never leaves a half-written file.
+exit status: 0 the run's expectations passed, 1 one failed, 2 bad usage or bad input.
+)";
+}
+
+int play_command(std::span<const std::string_view> args, std::ostream& out, std::ostream& err) {
+    std::string scenario_path;
+    ReplayOptions options;
+    std::string frames_text = "all";
+    std::int64_t every = 1;
+    std::string trace_path;
+    bool quiet = false;
+    std::string assets = game::default_assets_dir();
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string_view a = args[i];
+        auto value = [&]() -> std::optional<std::string_view> {
+            if (i + 1 >= args.size()) return std::nullopt;
+            return args[++i];
+        };
+        if (a == "--overlay") {
+            options.draw.overlay = true;
+        } else if (a == "--no-hud") {
+            options.draw.hud = false;
+        } else if (a == "--quiet") {
+            quiet = true;
+        } else if (a == "--out" || a == "--frames" || a == "--every" || a == "--size" || a == "--sheet" ||
+                   a == "--anim" || a == "--trace" || a == "--dump-every" || a == "--assets") {
+            const auto v = value();
+            if (!v || v->empty()) return usage(err, std::string(a) + " needs a value");
+            if (a == "--out") options.out_dir = std::string(*v);
+            if (a == "--frames") frames_text = std::string(*v);
+            if (a == "--sheet") options.sheet_path = std::string(*v);
+            if (a == "--anim") options.anim_path = std::string(*v);
+            if (a == "--trace") trace_path = std::string(*v);
+            if (a == "--assets") assets = std::string(*v);
+            if (a == "--every") {
+                const auto n = parse_whole(*v, 1, 1'000'000);
+                if (!n) return usage(err, "--every: expected a whole number from 1 to 1000000, got '" + std::string(*v) + "'");
+                every = *n;
+            }
+            if (a == "--dump-every") {
+                const auto n = parse_whole(*v, 1, 1'000'000);
+                if (!n) return usage(err, "--dump-every: expected a whole number from 1 to 1000000, got '" + std::string(*v) + "'");
+                options.dump_every = static_cast<int>(*n);
+            }
+            if (a == "--size") {
+                const auto size = parse_size(*v);
+                if (!size) return usage(err, "--size: expected WIDTHxHEIGHT with sides from 1 to 8192, got '" + std::string(*v) + "'");
+                options.width = size->first;
+                options.height = size->second;
+            }
+        } else if (a.size() > 1 && a.front() == '-') {
+            return usage(err, "unknown option '" + std::string(a) + "'");
+        } else if (scenario_path.empty()) {
+            scenario_path = std::string(a);
+        } else {
+            return usage(err, "expected one scenario, got a second: '" + std::string(a) + "'");
+        }
+    }
+    if (scenario_path.empty()) return usage(err, "expected a scenario file");
+    std::string selection_error;
+    const std::optional<FrameSelection> selection = FrameSelection::parse(frames_text, &selection_error);
+    if (!selection) return usage(err, "--frames: " + selection_error);
+    options.frames = *selection;
+    options.frames.set_every(every);
+    if (trace_path.empty() && options.dump_every != 10 && !quiet) {
+        err << "jostle play: note: --dump-every has no effect without --trace\n";
+    }
+    if (trace_path.empty()) options.dump_every = 0;
+
+    try {
+        const game::ArenaGame game(assets);
+        const Scenario scenario = load_scenario(scenario_path, game.vocabulary());
+        const std::string hash = game.level_hash(scenario.level);
+        if (hash != scenario.level_hash && !quiet) {
+            err << "jostle play: note: " << scenario_path << ": level '" << scenario.level
+                << "' has changed since the scenario was recorded (level-hash " << scenario.level_hash << ", now "
+                << hash << ")\n";
+        }
+        // A progress line on a terminal, at most ten times a second.
+        const bool progress = !quiet && ::isatty(2) == 1;
+        auto last_shown = std::chrono::steady_clock::now();
+        if (progress) {
+            options.progress = [&](std::int64_t done, std::int64_t total) {
+                const auto now = std::chrono::steady_clock::now();
+                if (done != total && now - last_shown < std::chrono::milliseconds(100)) return;
+                last_shown = now;
+                err << "\rtick " << done << " / " << total << " (" << done * 100 / total << "%)" << std::flush;
+                if (done == total) err << "\r\033[K" << std::flush;
+            };
+        }
+        const ReplayResult result = replay(game, scenario, options);
+        if (!trace_path.empty()) write_file_atomic(trace_path, format_trace(result, options.dump_every));
+
+        std::int64_t passed = 0;
+        for (const ExpectationResult& r : result.expectations) {
+            if (r.passed) {
+                ++passed;
+                continue;
+            }
+            const Expectation& e = *r.expectation;
+            err << scenario_path << ":" << e.line << ": expectation failed at tick " << e.tick << ": expected "
+                << e.text << ", found " << r.actual << "\n";
+        }
+        if (!quiet) {
+            out << "played " << scenario_path << ": " << result.ticks << " ticks, " << passed << "/"
+                << result.expectations.size() << " expectations passed, " << ratio_text(result.seconds) << " s ("
+                << ratio_text(static_cast<double>(result.ticks) / std::max(result.seconds, 1e-9)) << " ticks/s)";
+            if (result.frames_rendered > 0) {
+                out << ", " << result.frames_rendered << " frames rendered ("
+                    << ratio_text(static_cast<double>(result.frames_rendered) / std::max(result.seconds, 1e-9))
+                    << " frames/s)";
+            }
+            out << "\n";
+            if (!options.out_dir.empty()) out << "frames: " << options.out_dir << "/\n";
+            if (!options.sheet_path.empty()) out << "contact sheet: " << options.sheet_path << "\n";
+            if (!options.anim_path.empty()) out << "animation: " << options.anim_path << "\n";
+            if (!trace_path.empty()) out << "trace: " << trace_path << "\n";
+        }
+        return result.expectations_passed() ? 0 : 1;
+    } catch (const InputError& e) {
+        err << "jostle play: " << e.what() << '\n';
+        return 2;
+    }
+}
+
+}  // namespace jostle
