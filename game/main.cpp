@@ -10,6 +10,7 @@
 
 #include "imgdiff.h"
 #include "play.h"
+#include "record.h"
 #include "query.h"
 
 namespace {
@@ -28,6 +29,9 @@ constexpr Command kCommands[] = {
     {"play", "replay a scenario: fast-forward, or rendering frames, a contact sheet, an animation, a trace",
      jostle::play_help,
      [](std::span<const std::string_view> args) { return jostle::play_command(args, std::cout, std::cerr); }},
+    {"record", "write a scenario from an input script, verified by replaying what it wrote",
+     jostle::record_help,
+     [](std::span<const std::string_view> args) { return jostle::record_command(args, std::cin, std::cout, std::cerr); }},
     {"imgdiff", "compare two PNG images within a tolerance (exit 0 match, 1 differ), optionally writing a diff picture",
      jostle::imgdiff_help,
      [](std::span<const std::string_view> args) { return jostle::imgdiff_command(args, std::cout, std::cerr); }},

@@ -71,6 +71,14 @@ void AtomicFile::seek(std::int64_t offset) {
     }
 }
 
+void AtomicFile::flush() {
+    JOSTLE_ASSERT(file_ != nullptr, "AtomicFile::flush after commit");
+    if (std::fflush(file_) != 0) {
+        const int e = errno;
+        fail(std::strerror(e));
+    }
+}
+
 void AtomicFile::commit() {
     JOSTLE_ASSERT(file_ != nullptr, "AtomicFile::commit twice");
     // Flush to the disk before the rename, so the name never points at data still in flight.

@@ -114,12 +114,57 @@ private:
     int line_ = 0;
 };
 
-// The text after "at T " on a directive line, comment and outer spaces removed.
-std::string directive_text(std::string_view line, const std::vector<Word>& words) {
-    const std::size_t from = static_cast<std::size_t>(words[2].column - 1);
+// The line's text from words[first] to the last word, comment and outer spaces removed.
+std::string directive_text(std::string_view line, const std::vector<Word>& words, std::size_t first) {
+    const std::size_t from = static_cast<std::size_t>(words[first].column - 1);
     const Word& last = words.back();
     const std::size_t to = static_cast<std::size_t>(last.column - 1) + last.text.size();
     return std::string(line.substr(from, to - from));
+}
+
+// The words from words[first] ("expect") on, as an expectation at `tick`; `prefix` is what
+// comes before "expect" in the forms shown in errors ("at TICK " in scenarios).
+Expectation parse_expect(const Parser& p, std::string_view line, const std::vector<Word>& all_words, std::size_t first,
+                         std::int64_t tick, const std::string& prefix) {
+    const std::vector<Word> words(all_words.begin() + static_cast<std::ptrdiff_t>(first), all_words.end());
+    auto form = [&](const char* rest) { return prefix + rest; };
+    if (words.size() < 3) {
+        p.expect_count(words, 3, form("expect NAME alive|gone|in X0 Y0 X1 Y1, or count KIND OP N, var NAME OP V, event NAME").c_str());
+    }
+    Expectation e;
+    e.tick = tick;
+    e.line = p.line();
+    e.text = directive_text(line, words, 0);
+    const std::string_view subject = words[1].text;
+    if (subject == "count" || subject == "var") {
+        p.expect_count(words, 5, form(subject == "count" ? "expect count KIND OP N" : "expect var NAME OP VALUE").c_str());
+        e.kind = subject == "count" ? Expectation::Kind::count : Expectation::Kind::variable;
+        e.name = std::string(words[2].text);
+        e.comparison = p.comparison(words[3]);
+        e.value = p.number(words[4]);
+    } else if (subject == "event") {
+        p.expect_count(words, 3, form("expect event NAME").c_str());
+        e.kind = Expectation::Kind::event;
+        e.name = std::string(words[2].text);
+    } else {
+        e.name = std::string(subject);
+        const std::string_view verb = words[2].text;
+        if (verb == "alive" || verb == "gone") {
+            p.expect_count(words, 3, form("expect NAME alive|gone").c_str());
+            e.kind = verb == "alive" ? Expectation::Kind::alive : Expectation::Kind::gone;
+        } else if (verb == "in") {
+            p.expect_count(words, 7, form("expect NAME in X0 Y0 X1 Y1").c_str());
+            e.kind = Expectation::Kind::in_region;
+            e.region = Aabb{{static_cast<float>(p.number(words[3])), static_cast<float>(p.number(words[4]))},
+                            {static_cast<float>(p.number(words[5])), static_cast<float>(p.number(words[6]))}};
+            if (e.region.min.x > e.region.max.x || e.region.min.y > e.region.max.y) {
+                p.fail(words[3], "expected X0 <= X1 and Y0 <= Y1 (the region's top-left corner first)");
+            }
+        } else {
+            p.fail(words[2], "expected 'alive', 'gone' or 'in' after the entity name, got '" + std::string(verb) + "'");
+        }
+    }
+    return e;
 }
 
 }  // namespace
@@ -268,41 +313,7 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
                 s.end_tick = tick;
                 end_line = line_number;
             } else if (what == "expect") {
-                if (words.size() < 5) p.expect_count(words, 5, "at TICK expect NAME alive|gone|in X0 Y0 X1 Y1, or count KIND OP N, var NAME OP V, event NAME");
-                Expectation e;
-                e.tick = tick;
-                e.line = line_number;
-                e.text = directive_text(line, words);
-                const std::string_view subject = words[3].text;
-                if (subject == "count" || subject == "var") {
-                    p.expect_count(words, 7, subject == "count" ? "at TICK expect count KIND OP N" : "at TICK expect var NAME OP VALUE");
-                    e.kind = subject == "count" ? Expectation::Kind::count : Expectation::Kind::variable;
-                    e.name = std::string(words[4].text);
-                    e.comparison = p.comparison(words[5]);
-                    e.value = p.number(words[6]);
-                } else if (subject == "event") {
-                    p.expect_count(words, 5, "at TICK expect event NAME");
-                    e.kind = Expectation::Kind::event;
-                    e.name = std::string(words[4].text);
-                } else {
-                    e.name = std::string(subject);
-                    const std::string_view verb = words[4].text;
-                    if (verb == "alive" || verb == "gone") {
-                        p.expect_count(words, 5, "at TICK expect NAME alive|gone");
-                        e.kind = verb == "alive" ? Expectation::Kind::alive : Expectation::Kind::gone;
-                    } else if (verb == "in") {
-                        p.expect_count(words, 9, "at TICK expect NAME in X0 Y0 X1 Y1");
-                        e.kind = Expectation::Kind::in_region;
-                        e.region = Aabb{{static_cast<float>(p.number(words[5])), static_cast<float>(p.number(words[6]))},
-                                        {static_cast<float>(p.number(words[7])), static_cast<float>(p.number(words[8]))}};
-                        if (e.region.min.x > e.region.max.x || e.region.min.y > e.region.max.y) {
-                            p.fail(words[5], "expected X0 <= X1 and Y0 <= Y1 (the region's top-left corner first)");
-                        }
-                    } else {
-                        p.fail(words[4], "expected 'alive', 'gone' or 'in' after the entity name, got '" + std::string(verb) + "'");
-                    }
-                }
-                s.expectations.push_back(std::move(e));
+                s.expectations.push_back(parse_expect(p, line, words, 2, tick, "at TICK "));
             } else {
                 p.fail(words[2], "expected 'screenshot', 'expect' or 'end' after 'at TICK', got '" + std::string(what) + "'");
             }
@@ -436,6 +447,19 @@ std::string format_scenario(const Scenario& s, const ScenarioVocabulary& vocabul
     }
     if (s.end_tick) out += "at " + std::to_string(*s.end_tick) + " end\n";
     return out;
+}
+
+}  // namespace jostle
+
+namespace jostle {
+
+Expectation parse_expectation(std::string_view line, std::int64_t tick, const std::string& source, int line_number) {
+    static const ScenarioVocabulary kNone;
+    Parser p(source, kNone);
+    p.set_line(line_number);
+    const std::vector<Word> words = split_words(line);
+    if (words.empty() || words[0].text != "expect") p.fail(line_number, 1, "expected 'expect ...'");
+    return parse_expect(p, line, words, 0, tick, "");
 }
 
 }  // namespace jostle

@@ -26,6 +26,8 @@ public:
     // The write position, and moving it (to patch a header written earlier).
     std::int64_t tell();
     void seek(std::int64_t offset);
+    // Pushes buffered bytes into the temporary file (so it can be read back before commit).
+    void flush();
     // Flushes, syncs, closes and renames the temporary file over the target.
     void commit();
 

@@ -110,6 +110,10 @@ Scenario load_scenario(const std::string& path, const ScenarioVocabulary& vocabu
 // then the directives. parse_scenario(format_scenario(s)) gives s back (but line numbers).
 std::string format_scenario(const Scenario& scenario, const ScenarioVocabulary& vocabulary);
 
+// One "expect ..." line (as in a scenario after "at T ", or a recorder script) as an
+// expectation at `tick`. Throws InputError naming source:line_number:column.
+Expectation parse_expectation(std::string_view line, std::int64_t tick, const std::string& source, int line_number);
+
 // "right fire", or "-" for nothing held.
 std::string format_input(InputFrame input, const ScenarioVocabulary& vocabulary);
 

@@ -1,0 +1,195 @@
+// `jostle record`: argument parsing, the read-back check and the summary; scripts and the
+// live recording are engine/replay (jostle/replay/record.h).
+#include "record.h"
+
+#include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <istream>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <string>
+
+#include "arena.h"
+#include "jostle/core/atomic_file.h"
+#include "jostle/core/error.h"
+#include "jostle/replay/record.h"
+#include "jostle/replay/replay.h"
+
+namespace jostle {
+namespace {
+
+int usage(std::ostream& err, const std::string& message) {
+    err << "jostle record: " << message << "\nRun 'jostle record --help' for usage.\n";
+    return 2;
+}
+
+std::optional<std::uint64_t> parse_unsigned(std::string_view text, std::uint64_t hi) {
+    std::uint64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc{} || end != text.data() + text.size() || v > hi) return std::nullopt;
+    return v;
+}
+
+std::string read_all(std::istream& in) {
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+}  // namespace
+
+std::string_view record_help() {
+    return R"(usage: jostle record --level LEVEL -o SCENARIO [--script FILE] [--seed N] [--tick-rate N]
+       jostle record --from SCENARIO --at TICK -o SCENARIO [--script FILE]
+
+Plays an input script live against the arena game and writes the scenario that reproduces
+the run. Then it reads the file back and replays it: the file is kept only when the replay
+gives the recorded run's state hash on every tick.
+
+The script (from FILE, or from standard input without --script), one step per line:
+  hold ACTION... TICKS    hold these actions for TICKS ticks ("hold right up 30")
+  press ACTION...         hold them for one tick
+  wait TICKS              hold nothing for TICKS ticks
+  screenshot              keep a screenshot of the state after the last tick played
+  expect ...              an expectation about that state: NAME alive, NAME gone,
+                          NAME in X0 Y0 X1 Y1, count KIND OP N, var NAME OP V, event NAME
+  # comment
+Actions: left, right, up, down, fire.
+
+options:
+  --level LEVEL     the level to play (a file assets/levels/LEVEL.level)
+  -o, --out FILE    the scenario to write (atomically; an existing file is replaced)
+  --script FILE     the input script (default: standard input)
+  --seed N          the world's RNG seed (default 1)
+  --tick-rate N     ticks per second, 1..1000 (default 60)
+  --from SCENARIO   re-record: keep the start of this scenario (its level, seed, tick rate,
+  --at TICK         and its first TICK ticks of input with their directives), then continue
+                    with the script
+  --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
+
+exit status: 0 written and verified, 1 the read-back replay differed (nothing written),
+2 bad usage or bad input.
+)";
+}
+
+int record_command(std::span<const std::string_view> args, std::istream& in, std::ostream& out, std::ostream& err) {
+    std::string level, out_path, script_path, from_path;
+    std::optional<std::int64_t> at;
+    RecordDesc desc;
+    std::string assets = game::default_assets_dir();
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string_view a = args[i];
+        if (a != "--level" && a != "-o" && a != "--out" && a != "--script" && a != "--seed" && a != "--tick-rate" &&
+            a != "--from" && a != "--at" && a != "--assets") {
+            if (a.size() > 1 && a.front() == '-') return usage(err, "unknown option '" + std::string(a) + "'");
+            return usage(err, "unexpected argument '" + std::string(a) + "'");
+        }
+        if (i + 1 >= args.size() || args[i + 1].empty()) return usage(err, std::string(a) + " needs a value");
+        const std::string_view v = args[++i];
+        if (a == "--level") level = std::string(v);
+        if (a == "-o" || a == "--out") out_path = std::string(v);
+        if (a == "--script") script_path = std::string(v);
+        if (a == "--from") from_path = std::string(v);
+        if (a == "--assets") assets = std::string(v);
+        if (a == "--seed") {
+            const auto n = parse_unsigned(v, UINT64_MAX);
+            if (!n) return usage(err, "--seed: expected a whole number from 0 to 18446744073709551615, got '" + std::string(v) + "'");
+            desc.seed = *n;
+        }
+        if (a == "--tick-rate") {
+            const auto n = parse_unsigned(v, 1000);
+            if (!n || *n < 1) return usage(err, "--tick-rate: expected a whole number from 1 to 1000, got '" + std::string(v) + "'");
+            desc.tick_rate = static_cast<int>(*n);
+        }
+        if (a == "--at") {
+            const auto n = parse_unsigned(v, static_cast<std::uint64_t>(kMaxScenarioTicks));
+            if (!n) return usage(err, "--at: expected a tick number, got '" + std::string(v) + "'");
+            at = static_cast<std::int64_t>(*n);
+        }
+    }
+    if (out_path.empty()) return usage(err, "expected -o SCENARIO (the file to write)");
+    if (from_path.empty() == at.has_value()) {  // one without the other
+        if (from_path.empty()) return usage(err, "--at needs --from SCENARIO");
+        return usage(err, "--from needs --at TICK (how many ticks to keep)");
+    }
+    if (!from_path.empty() && !level.empty()) return usage(err, "--level cannot be used with --from (the level is the scenario's)");
+    if (from_path.empty() && level.empty()) return usage(err, "expected --level LEVEL (or --from SCENARIO --at TICK)");
+
+    try {
+        const game::ArenaGame game(assets);
+        std::optional<Scenario> from;
+        if (!from_path.empty()) {
+            from = load_scenario(from_path, game.vocabulary());
+            if (*at > from->ticks()) {
+                return usage(err, "--at " + std::to_string(*at) + ": " + from_path + " has only " +
+                                      std::to_string(from->ticks()) + " ticks");
+            }
+            desc.from = &*from;
+            desc.keep_ticks = *at;
+        } else {
+            const auto& levels = game.vocabulary().levels;
+            if (std::find(levels.begin(), levels.end(), level) == levels.end()) {
+                std::string known;
+                for (const std::string& name : levels) known += (known.empty() ? "" : ", ") + name;
+                return usage(err, "--level: unknown level '" + level + "' (expected one of: " + known + ")");
+            }
+            desc.level = level;
+        }
+
+        std::string script_text;
+        std::string script_source = script_path.empty() ? "<stdin>" : script_path;
+        if (script_path.empty()) {
+            script_text = read_all(in);
+        } else {
+            std::ifstream file(script_path, std::ios::binary);
+            if (!file) throw InputError(SourceLocation{script_path, 0, 0}, "cannot open the script");
+            script_text = read_all(file);
+        }
+        const std::vector<ScriptStep> script = parse_input_script(script_text, script_source, game.vocabulary());
+        const Recording recording = record(game, desc, script, script_source);
+        const std::string text = format_scenario(recording.scenario, game.vocabulary());
+
+        // Doom's rule: write the file, read it back from the disk, replay it, and keep it only
+        // when the replay is the recorded run, tick for tick.
+        AtomicFile file(out_path);
+        file.write(text);
+        file.flush();
+        std::string read_back;
+        {
+            std::ifstream back(file.temp_path(), std::ios::binary);
+            read_back = read_all(back);
+        }
+        const Scenario reread = parse_scenario(read_back, out_path, game.vocabulary());
+        ReplayOptions options;
+        options.dump_every = 0;
+        const ReplayResult replayed = replay(game, reread, options);
+        std::int64_t first_difference = -1;
+        const std::size_t n = std::max(replayed.hashes.size(), recording.hashes.size());
+        for (std::size_t t = 0; t < n && first_difference < 0; ++t) {
+            if (t >= replayed.hashes.size() || t >= recording.hashes.size() || replayed.hashes[t] != recording.hashes[t]) {
+                first_difference = static_cast<std::int64_t>(t);
+            }
+        }
+        if (first_difference >= 0) {
+            err << "jostle record: " << out_path << ": the recorded file does not reproduce the run: the replay differs from tick "
+                << first_difference << " on; nothing was written\n";
+            return 1;
+        }
+        file.commit();
+        for (const ExpectationResult& r : replayed.expectations) {
+            if (r.passed) continue;
+            err << "jostle record: note: " << script_source << ":" << r.expectation->line << ": expectation fails in this run at tick "
+                << r.expectation->tick << ": expected " << r.expectation->text << ", found " << r.actual << "\n";
+        }
+        out << "recorded " << recording.hashes.size() << " ticks of level " << recording.scenario.level << " to " << out_path
+            << " (read back and replayed: the same state on every tick)\n";
+        return 0;
+    } catch (const InputError& e) {
+        err << "jostle record: " << e.what() << '\n';
+        return 2;
+    }
+}
+
+}  // namespace jostle
