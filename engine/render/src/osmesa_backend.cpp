@@ -1,6 +1,7 @@
 // The OSMesa backend: Mesa's software OpenGL (llvmpipe) renders into a buffer in memory, with
 // no window and no GPU. An OpenGL 3.3 core context, one shader, one vertex buffer, the atlas as
 // one texture: a frame is one glDrawArrays. The only file that includes GL/OSMesa headers.
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -35,7 +36,10 @@ in vec2 v_uv;
 in vec4 v_color;
 uniform sampler2D atlas;
 out vec4 out_color;
-void main() { out_color = texture(atlas, v_uv) * v_color; }
+void main() {
+    vec4 c = texture(atlas, v_uv) * v_color;
+    out_color = vec4(c.rgb * c.a, c.a);  // premultiplied: blending is right over any alpha
+}
 )";
 
 GLuint compile(GLenum type, const char* source) {
@@ -101,7 +105,10 @@ public:
     int render(const Frame& frame, Image& out) override {
         resize(frame.width, frame.height);
         glViewport(0, 0, frame.width, frame.height);
-        glClearColor(frame.clear.r / 255.0f, frame.clear.g / 255.0f, frame.clear.b / 255.0f, frame.clear.a / 255.0f);
+        // The framebuffer holds premultiplied colour (see the blend below).
+        const float clear_alpha = frame.clear.a / 255.0f;
+        glClearColor(frame.clear.r / 255.0f * clear_alpha, frame.clear.g / 255.0f * clear_alpha,
+                     frame.clear.b / 255.0f * clear_alpha, clear_alpha);
         glClear(GL_COLOR_BUFFER_BIT);
         int calls = 0;
         if (frame.vertices != nullptr && !frame.vertices->empty()) {
@@ -111,9 +118,11 @@ public:
                              GL_UNSIGNED_BYTE, frame.atlas->rgba.data());
                 uploaded_version_ = frame.atlas_version;
             }
-            // Straight alpha over the frame: colour by source alpha, alpha accumulated.
+            // Porter-Duff "over" on premultiplied colour (the shader premultiplies): correct
+            // whatever the alpha already in the frame; straight-alpha blending is right only
+            // over opaque pixels.
             glEnable(GL_BLEND);
-            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+            glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
             glUseProgram(program_);
             glUniform2f(viewport_uniform_, static_cast<float>(frame.width), static_cast<float>(frame.height));
             glBindVertexArray(vao_);
@@ -134,10 +143,23 @@ public:
             std::memcpy(out.rgba.data() + static_cast<std::size_t>(y) * row,
                         buffer_.data() + static_cast<std::size_t>(frame.height - 1 - y) * row, row);
         }
+        unpremultiply(out.rgba);
         return calls;
     }
 
 private:
+    // Premultiplied to straight RGBA, rounded; opaque pixels (the common case) stay as they
+    // are, fully transparent ones become (0, 0, 0, 0).
+    static void unpremultiply(std::vector<std::uint8_t>& rgba) {
+        for (std::size_t i = 0; i < rgba.size(); i += 4) {
+            const unsigned a = rgba[i + 3];
+            if (a == 255u) continue;
+            for (std::size_t c = 0; c < 3; ++c) {
+                rgba[i + c] = a == 0u ? 0 : static_cast<std::uint8_t>(std::min(255u, (rgba[i + c] * 255u + a / 2u) / a));
+            }
+        }
+    }
+
     void resize(int width, int height) {
         if (width != width_ || height != height_) {
             buffer_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4u, 0);
