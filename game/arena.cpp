@@ -23,7 +23,8 @@ namespace {
 enum class Kind : std::uint8_t { player, wall, crate, rock, pickup, cannon, bullet, ball };
 constexpr const char* kKindNames[] = {"player", "wall", "crate", "rock", "pickup", "cannon", "bullet", "ball"};
 constexpr const char* kEventNames[] = {"fire", "bullet_hit", "rock_hit", "pickup", "cannon_fire", "player_hit"};
-enum GameEvent : int { kFire, kBulletHit, kRockHit, kPickup, kCannonFire, kPlayerHit };
+// Bits of events_seen_, in the order of kEventNames.
+enum GameEvent : int { kEventFire, kEventBulletHit, kEventRockHit, kEventPickup, kEventCannonFire, kEventPlayerHit };
 constexpr const char* kVariableNames[] = {"score", "shots", "balls"};
 
 std::string read_file(const std::string& path) {
@@ -277,7 +278,7 @@ private:
             EntityDesc{.kind = BodyKind::bullet, .position = p.position + forward * 15.0f,
                        .velocity = forward * rules_.bullet_speed, .ignore = things_[player_].id});
         cooldown_ = rules_.fire_cooldown;
-        events_seen_ |= 1u << kFire;
+        events_seen_ |= 1u << kEventFire;
     }
 
     void fire_cannons() {
@@ -294,7 +295,7 @@ private:
                 EntityDesc{.kind = BodyKind::dynamic, .position = c.position + dir * (10.0f + rules_.ball_radius + 2.0f),
                            .velocity = dir * speed, .collider = Collider::circle(rules_.ball_radius),
                            .inverse_mass = 2.0f, .restitution = 0.6f, .ignore = cannon});
-            events_seen_ |= 1u << kCannonFire;
+            events_seen_ |= 1u << kEventCannonFire;
         }
     }
 
@@ -315,23 +316,23 @@ private:
             if (a == nullptr || b == nullptr) continue;
             switch (e.type) {
                 case EventType::bullet_hit:
-                    events_seen_ |= 1u << kBulletHit;
+                    events_seen_ |= 1u << kEventBulletHit;
                     if (b->kind == Kind::rock) {
                         score_ += rules_.rock_hit_score;
-                        events_seen_ |= 1u << kRockHit;
+                        events_seen_ |= 1u << kEventRockHit;
                     }
                     break;
                 case EventType::trigger_enter:
                     if (a->kind == Kind::pickup && b->kind == Kind::player && a->alive) {
                         score_ += rules_.pickup_score;
-                        events_seen_ |= 1u << kPickup;
+                        events_seen_ |= 1u << kEventPickup;
                         world_.destroy(a->id);
                         a->alive = false;
                     }
                     break;
                 case EventType::contact_begin:
                     if ((a->kind == Kind::ball && b->kind == Kind::player) || (a->kind == Kind::player && b->kind == Kind::ball)) {
-                        events_seen_ |= 1u << kPlayerHit;
+                        events_seen_ |= 1u << kEventPlayerHit;
                     }
                     break;
                 default: break;

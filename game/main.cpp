@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "imgdiff.h"
+#include "check.h"
 #include "play.h"
 #include "record.h"
 #include "query.h"
@@ -32,6 +33,9 @@ constexpr Command kCommands[] = {
     {"record", "write a scenario from an input script, verified by replaying what it wrote",
      jostle::record_help,
      [](std::span<const std::string_view> args) { return jostle::record_command(args, std::cin, std::cout, std::cerr); }},
+    {"check", "replay scenarios and compare them with their goldens (trace, expectations, screenshots)",
+     jostle::check_help,
+     [](std::span<const std::string_view> args) { return jostle::check_command(args, std::cout, std::cerr); }},
     {"imgdiff", "compare two PNG images within a tolerance (exit 0 match, 1 differ), optionally writing a diff picture",
      jostle::imgdiff_help,
      [](std::span<const std::string_view> args) { return jostle::imgdiff_command(args, std::cout, std::cerr); }},

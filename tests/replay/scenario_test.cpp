@@ -51,7 +51,7 @@ TEST(Scenario, ParsesTheHeaderInputAndDirectives) {
     EXPECT_EQ(s.input(8).held, 0u);
     ASSERT_EQ(s.expectations.size(), 2u);
     EXPECT_EQ(s.expectations[0].tick, 1);  // sorted by tick
-    EXPECT_EQ(s.expectations[0].text, "expect count rock >= 3");
+    EXPECT_EQ(s.expectations[0].text, "count rock >= 3");
     EXPECT_EQ(s.expectations[1].region.max.x, 3.5f);
     ASSERT_EQ(s.screenshots.size(), 1u);
     EXPECT_EQ(s.screenshots[0].tick, 4);

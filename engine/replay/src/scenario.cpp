@@ -134,7 +134,7 @@ Expectation parse_expect(const Parser& p, std::string_view line, const std::vect
     Expectation e;
     e.tick = tick;
     e.line = p.line();
-    e.text = directive_text(line, words, 0);
+    e.text = directive_text(line, words, 1);
     const std::string_view subject = words[1].text;
     if (subject == "count" || subject == "var") {
         p.expect_count(words, 5, form(subject == "count" ? "expect count KIND OP N" : "expect var NAME OP VALUE").c_str());

@@ -70,7 +70,7 @@ struct Expectation {
     Comparison comparison = Comparison::eq;  // count, variable
     double value = 0.0;                      // count, variable
     int line = 0;        // where it was written
-    std::string text;    // the directive as written after "at T ", for reports
+    std::string text;    // as written after "expect ", for reports: "player alive"
 };
 
 struct Screenshot {

@@ -1,0 +1,154 @@
+// `jostle check`: arguments, parallel runs, the summary and the exit status; the comparison
+// is engine/replay (jostle/replay/check.h).
+#include "check.h"
+
+#include <atomic>
+#include <charconv>
+#include <cstdlib>
+#include <csignal>
+#include <mutex>
+#include <optional>
+#include <ostream>
+#include <thread>
+
+#include "arena.h"
+#include "jostle/core/error.h"
+#include "jostle/replay/check.h"
+
+namespace jostle {
+namespace {
+
+int usage(std::ostream& err, const std::string& message) {
+    err << "jostle check: " << message << "\nRun 'jostle check --help' for usage.\n";
+    return 2;
+}
+
+std::optional<std::int64_t> parse_whole(std::string_view text, std::int64_t lo, std::int64_t hi) {
+    std::int64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc{} || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
+    return v;
+}
+
+}  // namespace
+
+std::string_view check_help() {
+    return R"(usage: jostle check [SCENARIO|DIR ...] [--update] [--report DIR] [--jobs N]
+                    [--tolerance N] [--max-pixels N]
+
+Replays each scenario and compares the run with its goldens, which live beside it:
+NAME.trace (the state hash of every tick, with entity dumps) and NAME.tick_T.png (the frame
+at each screenshot). A folder means every *.scn in it; the default is the source tree's
+assets/scenarios. Reported per scenario: the first divergent tick with the entities and
+fields that differ, failed expectations, and screenshots that differ.
+
+options:
+  --update          re-bless the goldens of every scenario that differs, and print what
+                    changed. All new files are written first and renamed together, so an
+                    interrupted update changes nothing. Missing goldens are created only so.
+  --report DIR      write DIR/report.html (each failing scenario with its expected, actual
+                    and diff images side by side) and DIR/junit.xml (every scenario)
+  --jobs N          check N scenarios at once (default 1)
+  --tolerance N     per-channel difference (0..255) that still counts as equal in images
+  --max-pixels N    how many pixels may differ in each image (default 0)
+  --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
+
+Sharding: with TEST_TOTAL_SHARDS and TEST_SHARD_INDEX (or GTEST_TOTAL_SHARDS and
+GTEST_SHARD_INDEX) set, only scenario i with i % total == index is checked;
+TEST_SHARD_STATUS_FILE is touched.
+
+exit status: 0 every scenario passed (or was updated), 1 a regression, 2 bad usage or input.
+)";
+}
+
+int check_command(std::span<const std::string_view> args, std::ostream& out, std::ostream& err) {
+    std::vector<std::string> paths;
+    bool update = false;
+    std::string report;
+    std::int64_t jobs = 1;
+    CheckOptions options;
+    std::string assets = game::default_assets_dir();
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string_view a = args[i];
+        if (a == "--update") {
+            update = true;
+            continue;
+        }
+        if (a == "--report" || a == "--jobs" || a == "--tolerance" || a == "--max-pixels" || a == "--assets") {
+            if (i + 1 >= args.size() || args[i + 1].empty()) return usage(err, std::string(a) + " needs a value");
+            const std::string_view v = args[++i];
+            if (a == "--report") report = std::string(v);
+            if (a == "--assets") assets = std::string(v);
+            if (a == "--jobs") {
+                const auto n = parse_whole(v, 1, 256);
+                if (!n) return usage(err, "--jobs: expected a whole number from 1 to 256, got '" + std::string(v) + "'");
+                jobs = *n;
+            }
+            if (a == "--tolerance") {
+                const auto n = parse_whole(v, 0, 255);
+                if (!n) return usage(err, "--tolerance: expected a whole number from 0 to 255, got '" + std::string(v) + "'");
+                options.image_tolerance.max_channel_delta = static_cast<int>(*n);
+            }
+            if (a == "--max-pixels") {
+                const auto n = parse_whole(v, 0, INT64_MAX);
+                if (!n) return usage(err, "--max-pixels: expected a whole number >= 0, got '" + std::string(v) + "'");
+                options.image_tolerance.max_differing_pixels = *n;
+            }
+            continue;
+        }
+        if (a.size() > 1 && a.front() == '-') return usage(err, "unknown option '" + std::string(a) + "'");
+        paths.emplace_back(a);
+    }
+    if (paths.empty()) paths.push_back(assets + "/scenarios");
+
+    try {
+        const game::ArenaGame game(assets);
+        const std::vector<std::string> scenarios = select_shard(collect_scenarios(paths));
+        std::vector<ScenarioCheck> checks(scenarios.size());
+        std::atomic<std::size_t> next{0};
+        std::mutex print;
+        // Each worker takes the next scenario; results land in scenario order.
+        auto worker = [&]() {
+            for (std::size_t i = next++; i < scenarios.size(); i = next++) {
+                checks[i] = check_scenario(game, scenarios[i], options);
+                if (!update || !checks[i].goldens_differ() || checks[i].bad_input()) {
+                    const std::lock_guard<std::mutex> lock(print);
+                    out << describe_check(checks[i]) << std::flush;
+                }
+                // Tests interrupt an update midway through this hook.
+                if (const char* stop = std::getenv("JOSTLE_TEST_RAISE_AFTER_CHECK"); stop != nullptr && i == 0 && *stop == '1') {
+                    std::raise(SIGINT);
+                }
+            }
+        };
+        std::vector<std::thread> threads;
+        for (std::int64_t j = 1; j < std::min<std::int64_t>(jobs, static_cast<std::int64_t>(scenarios.size())); ++j) {
+            threads.emplace_back(worker);
+        }
+        worker();
+        for (std::thread& t : threads) t.join();
+
+        int bad = 0, failed = 0;
+        for (const ScenarioCheck& c : checks) {
+            if (c.bad_input()) ++bad;
+            else if (!c.passed()) ++failed;
+        }
+        if (update && bad == 0) {
+            const std::vector<std::string> lines = commit_updates(checks);
+            for (const std::string& line : lines) out << line << "\n";
+            out << "checked " << checks.size() << " scenarios: " << lines.size() << " updated\n";
+            if (!report.empty()) write_report(report, checks);
+            return 0;
+        }
+        if (!report.empty()) write_report(report, checks);
+        out << "checked " << checks.size() << " scenarios: " << checks.size() - static_cast<std::size_t>(failed + bad)
+            << " passed, " << failed << " failed" << (bad > 0 ? ", " + std::to_string(bad) + " with bad input" : "") << "\n";
+        if (update && bad > 0) err << "jostle check: nothing updated: fix the bad input first\n";
+        return bad > 0 ? 2 : failed > 0 ? 1 : 0;
+    } catch (const InputError& e) {
+        err << "jostle check: " << e.what() << '\n';
+        return 2;
+    }
+}
+
+}  // namespace jostle
