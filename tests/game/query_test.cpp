@@ -785,7 +785,7 @@ TEST(JostleBinary, UsageErrorsExitTwo) {
     r = run_jostle({"frobnicate"});
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(r.out, "");
-    EXPECT_EQ(r.err, "jostle: unknown command 'frobnicate' (expected query, imgdiff, help)\nRun 'jostle --help' for usage.\n");
+    EXPECT_EQ(r.err, "jostle: unknown command 'frobnicate' (expected query, play, record, check, imgdiff, help)\nRun 'jostle --help' for usage.\n");
 
     r = run_jostle({"--frobnicate"});
     EXPECT_EQ(r.status, 2);
