@@ -274,7 +274,7 @@ private:
         const EntityDesc& p = *world_.get(things_[player_].id);
         const Vec2 forward{std::cos(p.angle), std::sin(p.angle)};
         ++shots_;
-        add(Thing{.name = "bullet#" + std::to_string(shots_), .kind = Kind::bullet, .lifetime = rules_.bullet_lifetime},
+        add(Thing{.name = "bullet_" + std::to_string(shots_), .kind = Kind::bullet, .lifetime = rules_.bullet_lifetime},
             EntityDesc{.kind = BodyKind::bullet, .position = p.position + forward * 15.0f,
                        .velocity = forward * rules_.bullet_speed, .ignore = things_[player_].id});
         cooldown_ = rules_.fire_cooldown;
@@ -291,7 +291,7 @@ private:
             const float speed = t.speed;
             const EntityId cannon = t.id;
             ++balls_;
-            add(Thing{.name = "ball#" + std::to_string(balls_), .kind = Kind::ball, .lifetime = rules_.ball_lifetime},
+            add(Thing{.name = "ball_" + std::to_string(balls_), .kind = Kind::ball, .lifetime = rules_.ball_lifetime},
                 EntityDesc{.kind = BodyKind::dynamic, .position = c.position + dir * (10.0f + rules_.ball_radius + 2.0f),
                            .velocity = dir * speed, .collider = Collider::circle(rules_.ball_radius),
                            .inverse_mass = 2.0f, .restitution = 0.6f, .ignore = cannon});

@@ -106,14 +106,14 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
         const std::string_view head = words[0].text;
         if (head == "size") {
             r.expect_words(3, 3, "size WIDTH HEIGHT");
-            if (have_size) r.fail(1, "'size' given twice");
+            if (have_size) r.fail(words[0].column, "'size' given twice");
             level.size = {r.positive(1, "width"), r.positive(2, "height")};
             have_size = true;
             continue;
         }
         if (head == "player") {
             r.expect_words(3, 4, "player X Y [ANGLE]");
-            if (have_player) r.fail(1, "'player' given twice");
+            if (have_player) r.fail(words[0].column, "'player' given twice");
             level.player_start = {r.number(1), r.number(2)};
             if (words.size() == 4) level.player_angle = r.number(3);
             have_player = true;
@@ -182,7 +182,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             thing.period = r.whole(5, 1, 100000, "a period in ticks");
             thing.speed = r.positive(6, "ball speed");
         } else {
-            r.fail(1, "unknown line '" + std::string(head) +
+            r.fail(words[0].column, "unknown line '" + std::string(head) +
                           "' (expected size, player, wall, crate, rock, pickup or cannon)");
         }
         level.things.push_back(std::move(thing));

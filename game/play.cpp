@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -189,9 +190,15 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                     << " frames/s)";
             }
             out << "\n";
-            if (!options.out_dir.empty()) out << "frames: " << options.out_dir << "/\n";
-            if (!options.sheet_path.empty()) out << "contact sheet: " << options.sheet_path << "\n";
-            if (!options.anim_path.empty()) out << "animation: " << options.anim_path << "\n";
+            // Only what was written: a frame selection past the end of the run writes nothing.
+            const auto wrote = [&](const std::string& path) {
+                return std::find(result.files_written.begin(), result.files_written.end(), path) != result.files_written.end();
+            };
+            std::int64_t frames = 0;
+            for (const std::string& path : result.files_written) frames += path != options.sheet_path && path != options.anim_path;
+            if (!options.out_dir.empty()) out << "frames: " << frames << " in " << options.out_dir << "/\n";
+            if (wrote(options.sheet_path)) out << "contact sheet: " << options.sheet_path << "\n";
+            if (wrote(options.anim_path)) out << "animation: " << options.anim_path << "\n";
             if (!trace_path.empty()) out << "trace: " << trace_path << "\n";
         }
         return result.expectations_passed() ? 0 : 1;

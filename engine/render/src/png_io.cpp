@@ -256,7 +256,7 @@ std::vector<std::uint8_t> encode_png(const Image& image, const PngEncoding& enco
 void write_png_atomic(const std::string& path, const Image& image, int compression_level) {
     JOSTLE_ASSERT(compression_level >= 0 && compression_level <= 9,
                   "write_png_atomic: compression level must be in 0..9");
-    const std::vector<std::uint8_t> bytes = encode_png(image, PngEncoding{.compression_level = compression_level});
+    const std::vector<std::uint8_t> bytes = encode_png(image, PngEncoding{.compression_level = compression_level});  // "up" filter
     write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 

@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "jostle/core/error.h"
@@ -69,6 +70,16 @@ public:
             fail(word, "expected a finite number, got '" + std::string(word.text) + "'");
         }
         return value;
+    }
+
+    // A region corner: stored as a float, so a finite double beyond the float range (which
+    // would turn into infinity) is refused.
+    float float_number(const Word& word) const {
+        const double value = number(word);
+        if (std::fabs(value) > static_cast<double>(std::numeric_limits<float>::max())) {
+            fail(word, "expected a number from -3.4e38 to 3.4e38, got '" + std::string(word.text) + "'");
+        }
+        return static_cast<float>(value);
     }
 
     std::uint64_t unsigned_number(const Word& word, std::uint64_t max, const char* what) const {
@@ -155,8 +166,8 @@ Expectation parse_expect(const Parser& p, std::string_view line, const std::vect
         } else if (verb == "in") {
             p.expect_count(words, 7, form("expect NAME in X0 Y0 X1 Y1").c_str());
             e.kind = Expectation::Kind::in_region;
-            e.region = Aabb{{static_cast<float>(p.number(words[3])), static_cast<float>(p.number(words[4]))},
-                            {static_cast<float>(p.number(words[5])), static_cast<float>(p.number(words[6]))}};
+            e.region = Aabb{{p.float_number(words[3]), p.float_number(words[4])},
+                            {p.float_number(words[5]), p.float_number(words[6])}};
             if (e.region.min.x > e.region.max.x || e.region.min.y > e.region.max.y) {
                 p.fail(words[3], "expected X0 <= X1 and Y0 <= Y1 (the region's top-left corner first)");
             }
@@ -282,7 +293,7 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
         if (head == "tick-rate") {
             header(have_rate, "tick-rate TICKS_PER_SECOND");
             const std::uint64_t rate = p.unsigned_number(words[1], 1000, "a tick rate (1 .. 1000)");
-            if (rate < 1) p.fail(words[1], "expected a tick rate (1 .. 1000), got '0'");
+            if (rate < 1) p.fail(words[1], "expected a tick rate (1 .. 1000), got '" + std::string(words[1].text) + "'");
             s.tick_rate = static_cast<int>(rate);
             continue;
         }
@@ -320,7 +331,11 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
             continue;
         }
 
-        // Input lines: "T actions..." or "A-B actions...".
+        // Input lines: "T actions..." or "A-B actions...". A line starting with a letter is
+        // none of the line kinds (a misspelt directive, say): say what a line can be.
+        if ((head[0] >= 'a' && head[0] <= 'z') || (head[0] >= 'A' && head[0] <= 'Z')) {
+            p.fail(words[0], "unknown line '" + std::string(head) + "' (expected 'TICK actions', 'A-B actions' or 'at TICK ...')");
+        }
         const std::string_view range = head;
         const std::size_t dash = range.find('-', 1);
         const Word first_word{range.substr(0, dash), words[0].column};

@@ -55,10 +55,12 @@ enum class PngFilter {
     adaptive,        // per row, the filter whose output looks smallest
 };
 
-// How encode_png compresses. The zero value is jostle's frame setting.
+// How encode_png compresses. The zero value is jostle's frame setting: level 1 with the
+// "up" filter encodes a 640x480 frame in 0.14-0.23x libpng's default time at 1.01-1.24x its
+// size (tests/bench/render_bench.cpp, BM_PngEncode).
 struct PngEncoding {
     int compression_level = 1;  // zlib 0..9, or -1 for libpng's default (6)
-    PngFilter filter = PngFilter::libpng_default;
+    PngFilter filter = PngFilter::up;
     bool rle = false;           // zlib's Z_RLE strategy: run lengths only, fastest
 };
 

@@ -40,7 +40,7 @@ inline constexpr int kMaxSheetFrames = 64;
 struct ExpectationResult {
     const Expectation* expectation = nullptr;
     bool passed = false;
-    std::string actual;  // what was found, in words: "player at (212.5, 80)", "count rock = 2"
+    std::string actual;  // what was found, in words: "player is alive at (212.5, 80)", "count rock = 2"
 };
 
 struct TraceDump {

@@ -41,7 +41,9 @@ namespace jostle {
 
 inline constexpr int kScenarioFormatVersion = 1;
 inline constexpr int kMaxActions = 32;
-inline constexpr std::int64_t kMaxScenarioTicks = std::int64_t{1} << 31;
+// 2^24 ticks is over 77 hours at 60 Hz; the cap keeps a one-line file from asking for
+// gigabytes of per-tick input and hashes.
+inline constexpr std::int64_t kMaxScenarioTicks = std::int64_t{1} << 24;
 
 // The actions held on one tick: bit i is the game's action i. Live input, a recorded log and
 // a bot all produce this one struct, and the game reads input from nowhere else.

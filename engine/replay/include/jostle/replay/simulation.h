@@ -30,7 +30,7 @@ struct StateField {
 
 // One entity's readable state, for traces and divergence reports.
 struct EntityDump {
-    std::string name;  // unique within the run, stable across runs ("player", "rock_3", "bullet#17")
+    std::string name;  // unique within the run, stable across runs ("player", "rock_3", "bullet_17"); never contains '#' or spaces
     std::vector<StateField> fields;
 };
 

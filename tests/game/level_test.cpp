@@ -1,0 +1,231 @@
+// level_test.cpp: the arena's level files (game/level.h): every line kind read into the right
+// fields (and the shipped arena.level), and every kind of bad input refused with its exact
+// file:line:column message.
+#include "level.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "jostle/core/error.h"
+
+namespace jostle::game {
+namespace {
+
+// Lines 1-3; the line under test is line 4.
+const std::string kHead = "jostle-level 1\nsize 640 480\nplayer 100 240 0\n";
+
+std::string error_of(const std::string& text) {
+    try {
+        parse_level(text, "l.level", "test");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+// The message for `line` as line 4 of an otherwise good level.
+std::string error_of_line(const std::string& line) { return error_of(kHead + line + "\n"); }
+
+TEST(Level, EveryLineKind) {
+    const Level level = parse_level(
+        "jostle-level 1\n"
+        "# a comment line\n"
+        "size 320 200.5   # trailing comment\n"
+        "\n"
+        "player 10 20 1.5\n"
+        "wall w 0 0 320 8\n"
+        "\tcrate c 50 60 40 30 0.4\n"
+        "rock r circle 100 110 16\n"
+        "rock p poly 150 120 -14 -10 12 -14 18 6 -4 16 -16 4\n"
+        "pickup coin 180 120 8\n"
+        "cannon k 300 100 3.6 120 600\n",
+        "l.level", "mine");
+    EXPECT_EQ(level.name, "mine");
+    EXPECT_EQ(level.size.x, 320.0f);
+    EXPECT_EQ(level.size.y, 200.5f);
+    EXPECT_EQ(level.player_start.x, 10.0f);
+    EXPECT_EQ(level.player_start.y, 20.0f);
+    EXPECT_EQ(level.player_angle, 1.5f);
+    ASSERT_EQ(level.things.size(), 6u);
+
+    const LevelThing& wall = level.things[0];
+    EXPECT_EQ(wall.kind, LevelThing::Kind::wall);
+    EXPECT_EQ(wall.name, "w");
+    EXPECT_EQ(wall.position.x, 0.0f);
+    EXPECT_EQ(wall.position.y, 0.0f);
+    EXPECT_EQ(wall.size.x, 320.0f);  // walls: the max corner
+    EXPECT_EQ(wall.size.y, 8.0f);
+    EXPECT_EQ(wall.line, 6);
+
+    const LevelThing& crate = level.things[1];
+    EXPECT_EQ(crate.kind, LevelThing::Kind::crate);
+    EXPECT_EQ(crate.name, "c");
+    EXPECT_EQ(crate.position.x, 50.0f);
+    EXPECT_EQ(crate.position.y, 60.0f);
+    EXPECT_EQ(crate.size.x, 40.0f);
+    EXPECT_EQ(crate.size.y, 30.0f);
+    EXPECT_EQ(crate.angle, 0.4f);
+    EXPECT_EQ(crate.line, 7);
+
+    const LevelThing& circle = level.things[2];
+    EXPECT_EQ(circle.kind, LevelThing::Kind::rock_circle);
+    EXPECT_EQ(circle.name, "r");
+    EXPECT_EQ(circle.position.x, 100.0f);
+    EXPECT_EQ(circle.position.y, 110.0f);
+    EXPECT_EQ(circle.radius, 16.0f);
+
+    const LevelThing& poly = level.things[3];
+    EXPECT_EQ(poly.kind, LevelThing::Kind::rock_polygon);
+    EXPECT_EQ(poly.name, "p");
+    EXPECT_EQ(poly.position.x, 150.0f);
+    EXPECT_EQ(poly.position.y, 120.0f);
+    ASSERT_EQ(poly.polygon.count, 5);
+    bool found = false;  // the vertices are kept around the position (the winding may be reversed)
+    for (int i = 0; i < poly.polygon.count; ++i) found |= poly.polygon.points[i].x == 18.0f && poly.polygon.points[i].y == 6.0f;
+    EXPECT_TRUE(found);
+
+    const LevelThing& pickup = level.things[4];
+    EXPECT_EQ(pickup.kind, LevelThing::Kind::pickup);
+    EXPECT_EQ(pickup.name, "coin");
+    EXPECT_EQ(pickup.position.x, 180.0f);
+    EXPECT_EQ(pickup.radius, 8.0f);
+
+    const LevelThing& cannon = level.things[5];
+    EXPECT_EQ(cannon.kind, LevelThing::Kind::cannon);
+    EXPECT_EQ(cannon.name, "k");
+    EXPECT_EQ(cannon.position.x, 300.0f);
+    EXPECT_EQ(cannon.position.y, 100.0f);
+    EXPECT_EQ(cannon.angle, 3.6f);
+    EXPECT_EQ(cannon.period, 120);
+    EXPECT_EQ(cannon.speed, 600.0f);
+    EXPECT_EQ(cannon.line, 11);
+}
+
+TEST(Level, PlayerAngleIsOptionalAndCrlfIsFine) {
+    const Level level = parse_level("jostle-level 1\r\nsize 10 10\r\nplayer 1 2\r\npickup a 5 5 1\r\n", "l.level", "x");
+    EXPECT_EQ(level.player_angle, 0.0f);
+    EXPECT_EQ(level.player_start.y, 2.0f);
+    ASSERT_EQ(level.things.size(), 1u);
+    EXPECT_EQ(level.things[0].name, "a");
+}
+
+TEST(Level, TheShippedArena) {
+    std::ifstream in(std::string(JOSTLE_ASSETS_DIR) + "/levels/arena.level", std::ios::binary);
+    ASSERT_TRUE(in);
+    std::ostringstream text;
+    text << in.rdbuf();
+    const Level level = parse_level(text.str(), "arena.level", "arena");
+    EXPECT_EQ(level.size.x, 640.0f);
+    EXPECT_EQ(level.size.y, 480.0f);
+    EXPECT_EQ(level.player_start.x, 100.0f);
+    EXPECT_EQ(level.player_start.y, 240.0f);
+    int counts[6] = {};
+    for (const LevelThing& t : level.things) ++counts[static_cast<int>(t.kind)];
+    EXPECT_EQ(counts[static_cast<int>(LevelThing::Kind::wall)], 5);
+    EXPECT_EQ(counts[static_cast<int>(LevelThing::Kind::crate)], 2);
+    EXPECT_EQ(counts[static_cast<int>(LevelThing::Kind::rock_circle)], 2);
+    EXPECT_EQ(counts[static_cast<int>(LevelThing::Kind::rock_polygon)], 1);
+    EXPECT_EQ(counts[static_cast<int>(LevelThing::Kind::pickup)], 2);
+    EXPECT_EQ(counts[static_cast<int>(LevelThing::Kind::cannon)], 1);
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input
+// ---------------------------------------------------------------------------------------
+
+TEST(LevelErrors, NotALevelFile) {
+    EXPECT_EQ(error_of(""), "l.level:1: empty file: expected 'jostle-level 1'");
+    EXPECT_EQ(error_of("jostle-level 2\nsize 1 1\nplayer 0 0\n"), "l.level:1:1: expected 'jostle-level 1' as the first line");
+    EXPECT_EQ(error_of("jostle-scenario 1\n"), "l.level:1:1: expected 'jostle-level 1' as the first line");
+    EXPECT_EQ(error_of(std::string("# comment\n").append(kHead)), "l.level:1:1: expected 'jostle-level 1' as the first line");
+    EXPECT_EQ(error_of("jostle-level\n"), "l.level:1:1: expected 'jostle-level 1' as the first line");
+}
+
+TEST(LevelErrors, UnknownLineKind) {
+    EXPECT_EQ(error_of_line("tree t 1 2"), "l.level:4:1: unknown line 'tree' (expected size, player, wall, crate, rock, pickup or cannon)");
+    EXPECT_EQ(error_of_line("  Wall w 0 0 1 1"),  // the column of the word, not of the line
+              "l.level:4:3: unknown line 'Wall' (expected size, player, wall, crate, rock, pickup or cannon)");
+}
+
+TEST(LevelErrors, DuplicateAndReservedNames) {
+    EXPECT_EQ(error_of(kHead + "wall a 0 0 10 10\npickup a 5 5 2\n"), "l.level:5:8: the name 'a' is already taken");
+    EXPECT_EQ(error_of(kHead + "rock r circle 1 1 1\nrock r poly 0 0 0 0 1 0 0 1\n"), "l.level:5:6: the name 'r' is already taken");
+    EXPECT_EQ(error_of_line("crate player 1 2 3 4 0"), "l.level:4:7: the name 'player' is already taken");
+    EXPECT_EQ(error_of_line("cannon game 1 2 0 10 100"), "l.level:4:8: the name 'game' is already taken");
+}
+
+TEST(LevelErrors, PolygonRocks) {
+    // A dart: the vertex (0, 0) points inwards.
+    EXPECT_EQ(error_of_line("rock r poly 100 100 -10 -10 10 -10 0 0 10 10 -10 10"),
+              "l.level:4:21: not a convex polygon: polygon is not convex at vertex 2");
+    EXPECT_EQ(error_of_line("rock r poly 100 100 0 0 1 1 2 2"),
+              "l.level:4:21: not a convex polygon: polygon has zero area (all vertices on one line)");
+    EXPECT_EQ(error_of_line("rock r poly 100 100 0 0 5 0 0 0"),
+              "l.level:4:21: not a convex polygon: polygon vertices 0 and 2 are the same point");
+    std::string seventeen = "rock r poly 0 0";
+    for (int i = 0; i < 17; ++i) seventeen.append(" ").append(std::to_string(i)).append(" ").append(std::to_string(i * i));
+    EXPECT_EQ(error_of_line(seventeen), "l.level:4:17: not a convex polygon: a polygon needs 3 to 16 vertices, got 17");
+    const std::string form = "expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs'";
+    EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0"), "l.level:4:24: " + form);        // two vertices
+    EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 5"), "l.level:4:29: " + form);  // a lone coordinate
+    EXPECT_EQ(error_of_line("rock r square 1 2 3"), "l.level:4:8: expected 'circle' or 'poly', got 'square'");
+}
+
+TEST(LevelErrors, WallCornersOutOfOrder) {
+    EXPECT_EQ(error_of_line("wall w 10 0 10 8"), "l.level:4:8: expected X0 < X1 and Y0 < Y1");
+    EXPECT_EQ(error_of_line("wall w 20 0 10 8"), "l.level:4:8: expected X0 < X1 and Y0 < Y1");
+    EXPECT_EQ(error_of_line("wall w 0 8 10 8"), "l.level:4:8: expected X0 < X1 and Y0 < Y1");
+}
+
+TEST(LevelErrors, MissingSizeOrPlayerAndRepeats) {
+    EXPECT_EQ(error_of("jostle-level 1\nplayer 1 2\n"), "l.level:2: the level has no 'size WIDTH HEIGHT' line");
+    EXPECT_EQ(error_of("jostle-level 1\nsize 10 10\nwall w 0 0 1 1\n"), "l.level:3: the level has no 'player X Y' line");
+    EXPECT_EQ(error_of("jostle-level 1\n"), "l.level:1: the level has no 'size WIDTH HEIGHT' line");
+    EXPECT_EQ(error_of_line("size 10 10"), "l.level:4:1: 'size' given twice");
+    EXPECT_EQ(error_of_line("player 1 1"), "l.level:4:1: 'player' given twice");
+    EXPECT_EQ(error_of_line("\tsize 10 10"), "l.level:4:2: 'size' given twice");
+}
+
+TEST(LevelErrors, WrongWordCounts) {
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640\n"), "l.level:2:9: expected 'size WIDTH HEIGHT'");
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480 1\n"), "l.level:2:14: expected 'size WIDTH HEIGHT'");
+    EXPECT_EQ(error_of("jostle-level 1\nsize 1 1\nplayer 1 2 3 4\n"), "l.level:3:14: expected 'player X Y [ANGLE]'");
+    EXPECT_EQ(error_of("jostle-level 1\nsize 1 1\nplayer 1\n"), "l.level:3:9: expected 'player X Y [ANGLE]'");
+    EXPECT_EQ(error_of_line("wall w 0 0 10"), "l.level:4:14: expected 'wall NAME X0 Y0 X1 Y1'");
+    EXPECT_EQ(error_of_line("wall"), "l.level:4:5: expected 'wall NAME X0 Y0 X1 Y1'");
+    EXPECT_EQ(error_of_line("crate c 1 2 3 4"), "l.level:4:16: expected 'crate NAME X Y WIDTH HEIGHT ANGLE'");
+    EXPECT_EQ(error_of_line("rock r"), "l.level:4:7: expected 'rock NAME circle|poly ...'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2"), "l.level:4:18: expected 'rock NAME circle X Y RADIUS'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 4"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS'");
+    EXPECT_EQ(error_of_line("pickup p 1 2"), "l.level:4:13: expected 'pickup NAME X Y RADIUS'");
+    EXPECT_EQ(error_of_line("cannon k 1 2 3 4"), "l.level:4:17: expected 'cannon NAME X Y ANGLE PERIOD_TICKS BALL_SPEED'");
+}
+
+TEST(LevelErrors, NumbersTooBigNotFiniteOrNotPositive) {
+    const auto number = [](int column, const std::string& got) {
+        return "l.level:4:" + std::to_string(column) + ": expected a number (at most 1e6 in size), got '" + got + "'";
+    };
+    EXPECT_EQ(error_of_line("wall w 0 0 1000001 8"), number(12, "1000001"));
+    EXPECT_EQ(error_of_line("wall w 0 0 1e7 8"), number(12, "1e7"));
+    EXPECT_EQ(error_of_line("wall w -1e7 0 1 8"), number(8, "-1e7"));
+    EXPECT_EQ(error_of_line("wall w 0 0 1e39 8"), number(12, "1e39"));
+    EXPECT_EQ(error_of_line("pickup p nan 1 2"), number(10, "nan"));
+    EXPECT_EQ(error_of_line("pickup p 1 inf 2"), number(12, "inf"));
+    EXPECT_EQ(error_of_line("pickup p 1 2 x"), number(14, "x"));
+    EXPECT_EQ(error_of_line("crate c 1 2 3 4 0.5rad"), number(17, "0.5rad"));
+    EXPECT_EQ(error_of("jostle-level 1\nsize 1e6 1e6\nplayer -1e6 0\n"), "no error");  // 1e6 itself is fine
+    EXPECT_EQ(error_of("jostle-level 1\nsize 0 480\nplayer 0 0\n"), "l.level:2:6: expected a positive width, got '0'");
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 -1\nplayer 0 0\n"), "l.level:2:10: expected a positive height, got '-1'");
+    EXPECT_EQ(error_of_line("pickup p 1 2 0"), "l.level:4:14: expected a positive radius, got '0'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 -3"), "l.level:4:19: expected a positive radius, got '-3'");
+    EXPECT_EQ(error_of_line("crate c 1 2 0 4 0"), "l.level:4:13: expected a positive width, got '0'");
+    EXPECT_EQ(error_of_line("cannon k 1 2 0 0 600"), "l.level:4:16: expected a period in ticks (1 .. 100000), got '0'");
+    EXPECT_EQ(error_of_line("cannon k 1 2 0 1.5 600"), "l.level:4:16: expected a period in ticks (1 .. 100000), got '1.5'");
+    EXPECT_EQ(error_of_line("cannon k 1 2 0 100001 600"), "l.level:4:16: expected a period in ticks (1 .. 100000), got '100001'");
+    EXPECT_EQ(error_of_line("cannon k 1 2 0 10 0"), "l.level:4:19: expected a positive ball speed, got '0'");
+}
+
+}  // namespace
+}  // namespace jostle::game

@@ -1,0 +1,399 @@
+// play_test.cpp: `jostle play` end to end, running the built binary on scenario files in a
+// temporary folder: usage and input errors (exit 2, exact messages), failing expectations
+// (exit 1), the summary, frames, traces (the same with and without rendering), APNG and sheet.
+#include <fcntl.h>
+#include <poll.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "arena.h"
+#include "jostle/render/png_io.h"
+#include "jostle/replay/replay.h"
+#include "play.h"
+#include "render/apng_reader.h"
+
+extern char** environ;
+
+namespace jostle {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int status = -1;  // exit status, or -1 if it did not exit normally
+    std::string out;
+    std::string err;
+};
+
+// Runs the jostle binary with `args` (stdin /dev/null), collecting stdout and stderr (both
+// pipes polled, so neither can fill up and block the child).
+RunResult run_jostle(const std::vector<std::string>& args) {
+    RunResult result;
+    int out_pipe[2];
+    int err_pipe[2];
+    if (pipe(out_pipe) != 0 || pipe(err_pipe) != 0) {
+        ADD_FAILURE() << "pipe failed";
+        return result;
+    }
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_adddup2(&actions, out_pipe[1], 1);
+    posix_spawn_file_actions_adddup2(&actions, err_pipe[1], 2);
+    for (int fd : {out_pipe[0], out_pipe[1], err_pipe[0], err_pipe[1]}) posix_spawn_file_actions_addclose(&actions, fd);
+
+    std::vector<std::string> argv_strings = {JOSTLE_BINARY};
+    argv_strings.insert(argv_strings.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& s : argv_strings) argv.push_back(s.data());
+    argv.push_back(nullptr);
+
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, JOSTLE_BINARY, &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    close(out_pipe[1]);
+    close(err_pipe[1]);
+    if (spawned != 0) {
+        close(out_pipe[0]);
+        close(err_pipe[0]);
+        ADD_FAILURE() << "cannot start " << JOSTLE_BINARY << ": " << std::strerror(spawned);
+        return result;
+    }
+    pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
+    std::string* sinks[2] = {&result.out, &result.err};
+    int open_count = 2;
+    while (open_count > 0) {
+        if (poll(fds, 2, -1) < 0) {
+            if (errno == EINTR) continue;
+            break;
+        }
+        for (int i = 0; i < 2; ++i) {
+            if (fds[i].fd < 0 || fds[i].revents == 0) continue;
+            char buffer[4096];
+            const ssize_t n = read(fds[i].fd, buffer, sizeof buffer);
+            if (n > 0) {
+                sinks[i]->append(buffer, static_cast<std::size_t>(n));
+            } else if (n == 0 || errno != EINTR) {
+                close(fds[i].fd);
+                fds[i].fd = -1;
+                --open_count;
+            }
+        }
+    }
+    for (pollfd& f : fds) {
+        if (f.fd >= 0) close(f.fd);
+    }
+    int wait_status = 0;
+    while (waitpid(pid, &wait_status, 0) < 0 && errno == EINTR) {
+    }
+    result.status = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
+    return result;
+}
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::string usage_error(const std::string& message) {
+    return "jostle play: " + message + "\nRun 'jostle play --help' for usage.\n";
+}
+
+const std::string kAssets = JOSTLE_ASSETS_DIR;
+
+class Play : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::path(::testing::TempDir()) /
+               ("play_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+                std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        level_hash_ = game::ArenaGame(kAssets).level_hash("arena");
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    // The arena scenario header (the current level hash) and `body`, as NAME in the folder.
+    std::string scenario(const std::string& name, const std::string& body, const std::string& hash = "") {
+        std::ofstream(path(name), std::ios::binary)
+            << "jostle-scenario 1\nengine 0.1.0\nlevel arena\nseed 1\ntick-rate 60\nlevel-hash "
+            << (hash.empty() ? level_hash_ : hash) << "\n"
+            << body;
+        return path(name);
+    }
+
+    // `jostle play` with the source tree's assets.
+    RunResult play(std::vector<std::string> args) {
+        args.insert(args.begin(), "play");
+        args.push_back("--assets");
+        args.push_back(kAssets);
+        return run_jostle(args);
+    }
+
+    void expect_usage_error(const std::vector<std::string>& args, const std::string& message) {
+        const RunResult r = play(args);
+        EXPECT_EQ(r.status, 2) << message;
+        EXPECT_EQ(r.out, "");
+        EXPECT_EQ(r.err, usage_error(message));
+    }
+
+    fs::path dir_;
+    std::string level_hash_;
+};
+
+// Ten ticks of driving right from (100, 240): the ship ends at x = 125.
+constexpr const char* kDrive =
+    "0-9 up\n"
+    "at 9 expect player in 120 230 130 250\n"
+    "at 9 expect var score = 0\n"
+    "at 10 end\n";
+
+// A busier run for the trace: turning, driving, firing, and the cannon's first ball (tick 119).
+constexpr const char* kBusy =
+    "0-19 left fire\n"
+    "20-79 up fire\n"
+    "80-99 right\n"
+    "100-139 up\n"
+    "at 150 end\n";
+
+TEST_F(Play, UsageErrorsExitTwoWithTheirMessage) {
+    const RunResult none = run_jostle({"play"});
+    EXPECT_EQ(none.status, 2);
+    EXPECT_EQ(none.out, "");
+    EXPECT_EQ(none.err, usage_error("expected a scenario file"));
+    const std::string s = scenario("s.scn", kDrive);
+    expect_usage_error({s, "--fast"}, "unknown option '--fast'");
+    expect_usage_error({"-x", s}, "unknown option '-x'");
+    expect_usage_error({s, "other.scn"}, "expected one scenario, got a second: 'other.scn'");
+    expect_usage_error({"--quiet"}, "expected a scenario file");
+    for (const char* option : {"--out", "--frames", "--every", "--size", "--sheet", "--anim", "--trace", "--dump-every"}) {
+        const RunResult r = run_jostle({"play", s, option});
+        EXPECT_EQ(r.status, 2) << option;
+        EXPECT_EQ(r.err, usage_error(std::string(option) + " needs a value"));
+    }
+    expect_usage_error({s, "--out", ""}, "--out needs a value");
+}
+
+TEST_F(Play, BadSizeFramesAndEvery) {
+    const std::string s = scenario("s.scn", kDrive);
+    for (const char* size : {"64", "0x48", "64x", "x48", "8193x10", "64x48x2", "-64x48", "64X48"}) {
+        expect_usage_error({s, "--size", size},
+                           std::string("--size: expected WIDTHxHEIGHT with sides from 1 to 8192, got '") + size + "'");
+    }
+    expect_usage_error({s, "--frames", "10-5"}, "--frames: frames '10-5': range 10-5 ends before it starts");
+    expect_usage_error({s, "--frames", "x"}, "--frames: frames 'x': expected a frame number (0 or more), got 'x'");
+    expect_usage_error({s, "--frames", "1,,2"}, "--frames: frames '1,,2': expected a frame number or a range A-B, got an empty item");
+    for (const char* every : {"0", "-1", "x", "1000001", "2.5"}) {
+        expect_usage_error({s, "--every", every},
+                           std::string("--every: expected a whole number from 1 to 1000000, got '") + every + "'");
+    }
+    expect_usage_error({s, "--dump-every", "0"}, "--dump-every: expected a whole number from 1 to 1000000, got '0'");
+}
+
+TEST_F(Play, HelpExitsZero) {
+    const RunResult r = run_jostle({"play", "--help"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.out, play_help());
+    EXPECT_EQ(r.out.rfind("usage: jostle play SCENARIO", 0), 0u);
+    EXPECT_EQ(r.err, "");
+}
+
+TEST_F(Play, BadInputExitsTwoNamingFileAndLine) {
+    const std::string bad = scenario("bad.scn", "0 up\n1 jump\n");
+    RunResult r = play({bad});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "jostle play: " + bad + ":8:3: unknown action 'jump' (expected one of: left, right, up, down, fire, or '-' for none)\n");
+
+    const std::string missing = path("missing.scn");
+    r = play({missing});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "jostle play: " + missing + ": cannot open the scenario file\n");
+
+    const std::string lives = scenario("lives.scn", "0 up\nat 0 expect var lives = 3\n");
+    r = play({lives});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "jostle play: " + lives + ":8: unknown game variable 'lives' (expected one of: score, shots, balls)\n");
+
+    // The levels come from --assets: a level unknown there, and a broken level file.
+    const fs::path assets = dir_ / "assets";
+    fs::create_directories(assets / "levels");
+    std::ofstream((assets / "levels" / "arena.level").string(), std::ios::binary) << "jostle-level 1\nsize 0 480\nplayer 1 1\n";
+    std::ofstream((assets / "levels" / "other.level").string(), std::ios::binary) << "jostle-level 1\n";
+    const std::string s = scenario("s.scn", kDrive);
+    r = run_jostle({"play", s, "--assets", assets.string(), "--quiet"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "jostle play: " + (assets / "levels" / "arena.level").string() + ":2:6: expected a positive width, got '0'\n");
+    fs::remove(assets / "levels" / "arena.level");
+    r = run_jostle({"play", s, "--assets", assets.string()});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "jostle play: " + s + ":3:7: unknown level 'arena' (expected one of: other)\n");
+}
+
+TEST_F(Play, AFailingExpectationExitsOneSayingWhatWasFound) {
+    const std::string s = scenario("fail.scn",
+                                   "0-9 up\n"
+                                   "at 9 expect var score = 5\n"
+                                   "at 9 expect player in 120 230 130 250\n"
+                                   "at 9 expect count pickup < 2\n"
+                                   "at 4 expect player in 0 0 10 10\n"
+                                   "at 10 end\n");
+    const RunResult r = play({s});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, s + ":11: expectation failed at tick 4: expected player in 0 0 10 10, found player is alive at (112.5, 240)\n" +
+                         s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n" + s +
+                         ":10: expectation failed at tick 9: expected count pickup < 2, found count pickup = 2\n");
+    EXPECT_EQ(r.out.rfind("played " + s + ": 10 ticks, 1/4 expectations passed, ", 0), 0u) << r.out;
+}
+
+TEST_F(Play, APassingRunPrintsTheSummary) {
+    const std::string s = scenario("s.scn", kDrive);
+    RunResult r = play({s});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const std::string prefix = "played " + s + ": 10 ticks, 2/2 expectations passed, ";
+    ASSERT_EQ(r.out.rfind(prefix, 0), 0u) << r.out;
+    EXPECT_TRUE(std::regex_match(r.out.substr(prefix.size()), std::regex(R"([0-9]+\.[0-9] s \([0-9]+\.[0-9] ticks/s\)\n)"))) << r.out;
+
+    r = play({s, "--quiet"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "");
+}
+
+TEST_F(Play, AChangedLevelIsANoteNotAnError) {
+    const std::string s = scenario("old.scn", kDrive, "0000000000000000");
+    RunResult r = play({s});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err, "jostle play: note: " + s + ": level 'arena' has changed since the scenario was recorded (level-hash " +
+                         "0000000000000000, now " + level_hash_ + ")\n");
+    r = play({s, "--quiet"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err, "");
+}
+
+TEST_F(Play, OutWritesExactlyTheSelectedFrames) {
+    const std::string s = scenario("s.scn", kDrive);
+    const std::string out = path("frames");
+    const RunResult r = play({s, "--out", out, "--frames", "2-5", "--every", "2", "--size", "64x48"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find(", 2 frames rendered ("), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\nframes: 2 in " + out + "/\n"), std::string::npos) << r.out;
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(out)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"frame_000002.png", "frame_000004.png"}));
+    for (const std::string& name : names) {
+        const Image im = read_png(out + "/" + name);
+        EXPECT_EQ(im.width, 64);
+        EXPECT_EQ(im.height, 48);
+    }
+    // The 640x480 arena at a tenth of its size: the left wall in the first column, the floor
+    // colour at world (200, 400).
+    const Image im = read_png(out + "/frame_000002.png");
+    const auto pixel = [&](int x, int y) {
+        const std::size_t i = (static_cast<std::size_t>(y) * 64u + static_cast<std::size_t>(x)) * 4u;
+        return std::vector<int>{im.rgba[i], im.rgba[i + 1], im.rgba[i + 2], im.rgba[i + 3]};
+    };
+    EXPECT_EQ(pixel(0, 24), (std::vector<int>{110, 110, 120, 255}));
+    EXPECT_EQ(pixel(20, 40), (std::vector<int>{24, 26, 32, 255}));
+}
+
+TEST_F(Play, TheTraceReadsBackAndIsTheSameWithAndWithoutRendering) {
+    const std::string s = scenario("busy.scn", kBusy);
+    RunResult r = play({s, "--trace", path("a.trace"), "--quiet"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = play({s, "--trace", path("b.trace"), "--quiet"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = play({s, "--trace", path("c.trace"), "--out", path("frames"), "--every", "10", "--size", "64x48", "--overlay"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find(", 15 frames rendered ("), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\ntrace: " + path("c.trace") + "\n"), std::string::npos) << r.out;
+
+    const std::string a = read_text(path("a.trace"));
+    EXPECT_EQ(read_text(path("b.trace")), a);
+    EXPECT_EQ(read_text(path("c.trace")), a);  // rendering changes nothing
+    const ReplayResult trace = parse_trace(a, "a.trace");
+    EXPECT_EQ(trace.ticks, 150);
+    EXPECT_EQ(trace.hashes.size(), 150u);
+    ASSERT_EQ(trace.dumps.size(), 16u);  // every 10th tick and the last
+    EXPECT_EQ(trace.dumps.back().tick, 149);
+    EXPECT_EQ(trace.dumps[0].entities[0].name, "game");
+    // The run did what the input says: shots fired and the cannon's first ball.
+    const auto game_field = [&](const TraceDump& d, const std::string& name) {
+        for (const StateField& f : d.entities[0].fields) {
+            if (f.name == name) return f.value;
+        }
+        return std::string("(none)");
+    };
+    EXPECT_EQ(game_field(trace.dumps.back(), "shots"), "10");  // 80 ticks of fire, every 8th
+    EXPECT_EQ(game_field(trace.dumps.back(), "balls"), "1");
+    EXPECT_EQ(game_field(trace.dumps[11], "balls"), "0");  // tick 110
+
+    // --dump-every changes the dumps, never the hashes.
+    r = play({s, "--trace", path("d.trace"), "--dump-every", "50", "--quiet"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const ReplayResult every50 = parse_trace(read_text(path("d.trace")), "d.trace");
+    EXPECT_EQ(every50.hashes, trace.hashes);
+    ASSERT_EQ(every50.dumps.size(), 4u);  // 0, 50, 100, 149
+    EXPECT_EQ(every50.dumps[2].tick, 100);
+}
+
+TEST_F(Play, DumpEveryWithoutTraceIsANote) {
+    const std::string s = scenario("s.scn", kDrive);
+    const RunResult r = play({s, "--dump-every", "5"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err, "jostle play: note: --dump-every has no effect without --trace\n");
+}
+
+TEST_F(Play, AnimAndSheetAreValidPngs) {
+    const std::string s = scenario("s.scn", kDrive);
+    const RunResult r = play({s, "--anim", path("run.png"), "--sheet", path("sheet.png"), "--frames", "0-9", "--every", "3",
+                              "--size", "64x48"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("\nanimation: " + path("run.png") + "\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\ncontact sheet: " + path("sheet.png") + "\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(", 4 frames rendered ("), std::string::npos) << r.out;  // ticks 0, 3, 6, 9
+
+    const test::Apng apng = test::read_apng(path("run.png"));  // checks every chunk and CRC
+    EXPECT_EQ(apng.width, 64);
+    EXPECT_EQ(apng.height, 48);
+    ASSERT_EQ(apng.frames.size(), 4u);  // the ship moves: no two frames are equal
+    EXPECT_EQ(apng.frames[0].delay_num, 3);
+    EXPECT_EQ(apng.frames[0].delay_den, 60);
+    const Image first = read_png(path("run.png"));  // a plain PNG reader sees the first frame
+    EXPECT_EQ(first.width, 64);
+
+    const Image sheet = read_png(path("sheet.png"));
+    EXPECT_GE(sheet.width, 2 * 64);  // four thumbnails at 64 px, in a grid
+    EXPECT_GT(sheet.height, 2 * 48);
+}
+
+TEST_F(Play, AnOutputThatCannotBeWrittenIsBadInput) {
+    const std::string s = scenario("s.scn", kDrive);
+    const std::string trace = path("no/such/folder/t.trace");
+    const RunResult r = play({s, "--trace", trace, "--quiet"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err.rfind("jostle play: " + trace + ": cannot write: ", 0), 0u) << r.err;
+    EXPECT_FALSE(fs::exists(trace));
+}
+
+}  // namespace
+}  // namespace jostle
