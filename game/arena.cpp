@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "jostle/core/error.h"
+#include "jostle/core/text.h"
 #include "jostle/core/hash.h"
 #include "jostle/render/overlay.h"
 #include "level.h"
@@ -33,23 +34,6 @@ std::string read_file(const std::string& path) {
     std::ostringstream text;
     text << in.rdbuf();
     return text.str();
-}
-
-std::string hex16(std::uint64_t v) {
-    static const char* digits = "0123456789abcdef";
-    std::string out(16, '0');
-    for (int i = 15; i >= 0; --i) {
-        out[static_cast<std::size_t>(i)] = digits[v & 15u];
-        v >>= 4;
-    }
-    return out;
-}
-
-// Shortest text that reads back as the same float: traces compare exact values.
-std::string float_text(float v) {
-    char buffer[32];
-    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-    return ec == std::errc() ? std::string(buffer, end) : std::string("?");
 }
 
 struct Thing {
@@ -193,11 +177,11 @@ public:
             const EntityDesc& e = *world_.get(t.id);
             EntityDump d{t.name,
                          {{"kind", kKindNames[static_cast<int>(t.kind)]},
-                          {"x", float_text(e.position.x)},
-                          {"y", float_text(e.position.y)},
-                          {"angle", float_text(e.angle)},
-                          {"vx", float_text(e.velocity.x)},
-                          {"vy", float_text(e.velocity.y)}}};
+                          {"x", shortest_text(e.position.x)},
+                          {"y", shortest_text(e.position.y)},
+                          {"angle", shortest_text(e.angle)},
+                          {"vx", shortest_text(e.velocity.x)},
+                          {"vy", shortest_text(e.velocity.y)}}};
             if (t.lifetime >= 0) d.fields.push_back({"lifetime", std::to_string(t.lifetime)});
             out.push_back(std::move(d));
         }

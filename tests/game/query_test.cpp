@@ -1,12 +1,6 @@
 // query_test.cpp: `jostle query` in process (run_query_line and run_query: every op, every
 // shape type, the number format, each error message) and end to end (the built jostle binary
 // with stdin from tests/data, checking every output line and the exit status).
-#include <fcntl.h>
-#include <poll.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -20,9 +14,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "game/run_jostle.h"
 #include "query.h"
-
-extern char** environ;
 
 namespace jostle {
 namespace {
@@ -638,77 +631,12 @@ TEST(QueryStream, ExtraArgumentsAreAUsageError) {
 // End to end: the jostle binary
 // ---------------------------------------------------------------------------------------
 
-struct RunResult {
-    int status = -1;  // exit status, or -1 if it did not exit normally
-    std::string out;
-    std::string err;
-};
+using test::RunResult;
 
-// Runs the jostle binary with `args`, stdin from `stdin_path`, in folder `cwd`; collects
-// stdout and stderr (polling both pipes, so neither can fill up and block the child).
+// The binary, run in the test data folder by default.
 RunResult run_jostle(const std::vector<std::string>& args, const std::string& stdin_path = "/dev/null",
                      const std::string& cwd = kData) {
-    RunResult result;
-    int out_pipe[2];
-    int err_pipe[2];
-    if (pipe(out_pipe) != 0 || pipe(err_pipe) != 0) {
-        ADD_FAILURE() << "pipe failed";
-        return result;
-    }
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
-    posix_spawn_file_actions_addopen(&actions, 0, stdin_path.c_str(), O_RDONLY, 0);
-    posix_spawn_file_actions_adddup2(&actions, out_pipe[1], 1);
-    posix_spawn_file_actions_adddup2(&actions, err_pipe[1], 2);
-    for (int fd : {out_pipe[0], out_pipe[1], err_pipe[0], err_pipe[1]}) posix_spawn_file_actions_addclose(&actions, fd);
-
-    std::vector<std::string> argv_strings = {JOSTLE_BINARY};
-    argv_strings.insert(argv_strings.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& s : argv_strings) argv.push_back(s.data());
-    argv.push_back(nullptr);
-
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, JOSTLE_BINARY, &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    close(out_pipe[1]);
-    close(err_pipe[1]);
-    if (spawned != 0) {
-        close(out_pipe[0]);
-        close(err_pipe[0]);
-        ADD_FAILURE() << "cannot start " << JOSTLE_BINARY << ": " << std::strerror(spawned);
-        return result;
-    }
-    pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
-    std::string* sinks[2] = {&result.out, &result.err};
-    int open_count = 2;
-    while (open_count > 0) {
-        if (poll(fds, 2, -1) < 0) {
-            if (errno == EINTR) continue;
-            break;
-        }
-        for (int i = 0; i < 2; ++i) {
-            if (fds[i].fd < 0 || fds[i].revents == 0) continue;
-            char buffer[4096];
-            const ssize_t n = read(fds[i].fd, buffer, sizeof buffer);
-            if (n > 0) {
-                sinks[i]->append(buffer, static_cast<std::size_t>(n));
-            } else if (n == 0 || errno != EINTR) {
-                close(fds[i].fd);
-                fds[i].fd = -1;
-                --open_count;
-            }
-        }
-    }
-    for (pollfd& f : fds) {
-        if (f.fd >= 0) close(f.fd);
-    }
-    int wait_status = 0;
-    while (waitpid(pid, &wait_status, 0) < 0 && errno == EINTR) {
-    }
-    result.status = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
-    return result;
+    return test::run_jostle_binary(args, stdin_path, cwd);
 }
 
 std::vector<std::string> lines_of(const std::string& text) {

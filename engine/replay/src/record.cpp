@@ -4,6 +4,7 @@
 #include <charconv>
 
 #include "jostle/core/error.h"
+#include "jostle/core/text.h"
 
 #ifndef JOSTLE_VERSION
 #define JOSTLE_VERSION "0.0.0"
@@ -11,26 +12,6 @@
 
 namespace jostle {
 namespace {
-
-struct Word {
-    std::string_view text;
-    int column = 0;
-};
-
-std::vector<Word> split_words(std::string_view line) {
-    std::vector<Word> words;
-    std::size_t i = 0;
-    while (i < line.size() && line[i] != '#') {
-        if (line[i] == ' ' || line[i] == '\t' || line[i] == '\r') {
-            ++i;
-            continue;
-        }
-        const std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r' && line[i] != '#') ++i;
-        words.push_back(Word{line.substr(start, i - start), static_cast<int>(start) + 1});
-    }
-    return words;
-}
 
 std::string join(const std::vector<std::string>& names) {
     std::string out;

@@ -9,18 +9,13 @@
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
+#include "jostle/core/text.h"
 #include "jostle/render/animation.h"
 #include "jostle/render/contact_sheet.h"
 #include "jostle/render/renderer.h"
 
 namespace jostle {
 namespace {
-
-std::string number_text(double v) {
-    char buffer[64];
-    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-    return ec == std::errc() ? std::string(buffer, end) : std::string("nan");
-}
 
 std::string join(const std::vector<std::string>& names) {
     std::string out;
@@ -65,7 +60,7 @@ ExpectationResult check(const Expectation& e, const Simulation& sim) {
                 r.passed = e.kind == Expectation::Kind::gone;
                 r.actual = e.name + " is gone";
             } else {
-                r.actual = e.name + " is alive at (" + number_text(at->x) + ", " + number_text(at->y) + ")";
+                r.actual = e.name + " is alive at (" + shortest_text(at->x) + ", " + shortest_text(at->y) + ")";
                 r.passed = e.kind == Expectation::Kind::alive ||
                            (e.kind == Expectation::Kind::in_region && at->x >= e.region.min.x && at->x <= e.region.max.x &&
                             at->y >= e.region.min.y && at->y <= e.region.max.y);
@@ -81,7 +76,7 @@ ExpectationResult check(const Expectation& e, const Simulation& sim) {
         case Expectation::Kind::variable: {
             const double v = sim.variable(e.name).value_or(std::nan(""));
             r.passed = compare(v, e.comparison, e.value);
-            r.actual = e.name + " = " + number_text(v);
+            r.actual = e.name + " = " + shortest_text(v);
             break;
         }
         case Expectation::Kind::event: {
@@ -212,20 +207,6 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
 // ---------------------------------------------------------------------------------------
 // Traces
 // ---------------------------------------------------------------------------------------
-
-namespace {
-
-std::string hex16(std::uint64_t v) {
-    static const char* digits = "0123456789abcdef";
-    std::string out(16, '0');
-    for (int i = 15; i >= 0; --i) {
-        out[static_cast<std::size_t>(i)] = digits[v & 15u];
-        v >>= 4;
-    }
-    return out;
-}
-
-}  // namespace
 
 std::string format_trace(const ReplayResult& result, int dump_every) {
     std::string out = "jostle-trace 1\nticks " + std::to_string(result.ticks) + "\ndump-every " +

@@ -11,30 +11,10 @@
 #include <sstream>
 
 #include "jostle/core/error.h"
+#include "jostle/core/text.h"
 
 namespace jostle {
 namespace {
-
-struct Word {
-    std::string_view text;
-    int column = 0;  // 1-based
-};
-
-std::vector<Word> split_words(std::string_view line) {
-    std::vector<Word> words;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        if (line[i] == '#') break;
-        if (line[i] == ' ' || line[i] == '\t' || line[i] == '\r') {
-            ++i;
-            continue;
-        }
-        const std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r' && line[i] != '#') ++i;
-        words.push_back(Word{line.substr(start, i - start), static_cast<int>(start) + 1});
-    }
-    return words;
-}
 
 std::string join(const std::vector<std::string>& names) {
     std::string out;
@@ -410,17 +390,6 @@ std::string format_input(InputFrame input, const ScenarioVocabulary& vocabulary)
     return out.empty() ? "-" : out;
 }
 
-namespace {
-
-// Shortest text that reads back as the same float (the regions are floats).
-std::string number_text(double v) {
-    char buffer[64];
-    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-    return ec == std::errc() ? std::string(buffer, end) : std::string("0");
-}
-
-}  // namespace
-
 std::string format_scenario(const Scenario& s, const ScenarioVocabulary& vocabulary) {
     std::string out = "jostle-scenario " + std::to_string(kScenarioFormatVersion) + "\n";
     out += "engine " + s.engine_version + "\n";
@@ -445,16 +414,16 @@ std::string format_scenario(const Scenario& s, const ScenarioVocabulary& vocabul
         out += "at " + std::to_string(e.tick) + " expect ";
         switch (e.kind) {
             case Expectation::Kind::in_region:
-                out += e.name + " in " + number_text(e.region.min.x) + " " + number_text(e.region.min.y) + " " +
-                       number_text(e.region.max.x) + " " + number_text(e.region.max.y);
+                out += e.name + " in " + shortest_text(e.region.min.x) + " " + shortest_text(e.region.min.y) + " " +
+                       shortest_text(e.region.max.x) + " " + shortest_text(e.region.max.y);
                 break;
             case Expectation::Kind::alive: out += e.name + " alive"; break;
             case Expectation::Kind::gone: out += e.name + " gone"; break;
             case Expectation::Kind::count:
-                out += "count " + e.name + " " + std::string(comparison_text(e.comparison)) + " " + number_text(e.value);
+                out += "count " + e.name + " " + std::string(comparison_text(e.comparison)) + " " + shortest_text(e.value);
                 break;
             case Expectation::Kind::variable:
-                out += "var " + e.name + " " + std::string(comparison_text(e.comparison)) + " " + number_text(e.value);
+                out += "var " + e.name + " " + std::string(comparison_text(e.comparison)) + " " + shortest_text(e.value);
                 break;
             case Expectation::Kind::event: out += "event " + e.name; break;
         }
