@@ -13,6 +13,7 @@
 
 #include "arena.h"
 #include "jostle/core/error.h"
+#include "jostle/core/interrupt.h"
 #include "jostle/replay/check.h"
 
 namespace jostle {
@@ -57,7 +58,11 @@ Sharding: with TEST_TOTAL_SHARDS and TEST_SHARD_INDEX (or GTEST_TOTAL_SHARDS and
 GTEST_SHARD_INDEX) set, only scenario i with i % total == index is checked;
 TEST_SHARD_STATUS_FILE is touched.
 
-exit status: 0 every scenario passed (or was updated), 1 a regression, 2 bad usage or input.
+Ctrl-C (or SIGTERM) stops between ticks; an update then changes no golden, and no temporary
+file is left.
+
+exit status: 0 every scenario passed (or was updated), 1 a regression, 2 bad usage or input,
+130 (143) stopped by Ctrl-C (SIGTERM).
 )";
 }
 
@@ -107,18 +112,25 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
         std::vector<ScenarioCheck> checks(scenarios.size());
         std::atomic<std::size_t> next{0};
         std::mutex print;
-        // Each worker takes the next scenario; results land in scenario order.
+        // Tests interrupt a run at a chosen point: JOSTLE_TEST_INTERRUPT=after-check raises SIGINT
+        // once the first scenario is checked, =after-staged once the first new golden is staged.
+        const char* test_hook = std::getenv("JOSTLE_TEST_INTERRUPT");
+        const std::string_view interrupt_at = test_hook != nullptr ? test_hook : "";
+        // Each worker takes the next scenario; results land in scenario order. A signal stops
+        // every worker between ticks (Interrupted); the main thread rethrows it after the join.
         auto worker = [&]() {
-            for (std::size_t i = next++; i < scenarios.size(); i = next++) {
-                checks[i] = check_scenario(game, scenarios[i], options);
-                if (!update || !checks[i].goldens_differ() || checks[i].bad_input()) {
-                    const std::lock_guard<std::mutex> lock(print);
-                    out << describe_check(checks[i]) << std::flush;
+            try {
+                for (std::size_t i = next++; i < scenarios.size(); i = next++) {
+                    checks[i] = check_scenario(game, scenarios[i], options);
+                    if (!update || !checks[i].goldens_differ() || checks[i].bad_input()) {
+                        const std::lock_guard<std::mutex> lock(print);
+                        out << describe_check(checks[i]) << std::flush;
+                    }
+                    if (interrupt_at == "after-check" && i == 0) std::raise(SIGINT);
+                    throw_if_interrupted();
                 }
-                // Tests interrupt an update midway through this hook.
-                if (const char* stop = std::getenv("JOSTLE_TEST_RAISE_AFTER_CHECK"); stop != nullptr && i == 0 && *stop == '1') {
-                    std::raise(SIGINT);
-                }
+            } catch (const Interrupted&) {
+                next = scenarios.size();
             }
         };
         std::vector<std::thread> threads;
@@ -127,6 +139,7 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
         }
         worker();
         for (std::thread& t : threads) t.join();
+        throw_if_interrupted();
 
         int bad = 0, failed = 0;
         for (const ScenarioCheck& c : checks) {
@@ -134,7 +147,13 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             else if (!c.passed()) ++failed;
         }
         if (update && bad == 0) {
-            const std::vector<std::string> lines = commit_updates(checks);
+            bool raised = false;
+            const std::vector<std::string> lines = commit_updates(checks, [&](const std::string&) {
+                if (interrupt_at == "after-staged" && !raised) {
+                    raised = true;
+                    std::raise(SIGINT);
+                }
+            });
             for (const std::string& line : lines) out << line << "\n";
             out << "checked " << checks.size() << " scenarios: " << lines.size() << " updated\n";
             if (!report.empty()) write_report(report, checks);

@@ -1,6 +1,6 @@
 // main.cpp: the `jostle` command line. Each subcommand is one row of kCommands (name, one-line
-// summary, help text, entry point); a new subcommand is a new row. Exit status: 0 ok,
-// 1 a check failed, 2 bad input or usage.
+// summary, help text, entry point, whether Ctrl-C stops it cleanly); a new subcommand is a new
+// row. Exit status: 0 ok, 1 a check failed, 2 bad input or usage, 128 + N stopped by signal N.
 #include <exception>
 #include <iostream>
 #include <span>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "imgdiff.h"
+#include "jostle/core/interrupt.h"
 #include "check.h"
 #include "play.h"
 #include "record.h"
@@ -21,24 +22,32 @@ struct Command {
     std::string_view summary;       // one line in `jostle --help`
     std::string_view (*help)();     // the text of `jostle <name> --help`
     int (*run)(std::span<const std::string_view> args);  // args after the name; returns the exit status
+    // Long runs that write files take SIGINT and SIGTERM as a request to stop between ticks
+    // (jostle/core/interrupt.h). Commands that block reading stdin keep the default: they die.
+    bool stops_cleanly;
 };
 
 constexpr Command kCommands[] = {
     {"query", "answer collision queries: JSON lines on stdin, one JSON result per line on stdout",
      jostle::query_help,
-     [](std::span<const std::string_view> args) { return jostle::query_command(args, std::cin, std::cout, std::cerr); }},
+     [](std::span<const std::string_view> args) { return jostle::query_command(args, std::cin, std::cout, std::cerr); },
+     false},
     {"play", "replay a scenario: fast-forward, or rendering frames, a contact sheet, an animation, a trace",
      jostle::play_help,
-     [](std::span<const std::string_view> args) { return jostle::play_command(args, std::cout, std::cerr); }},
+     [](std::span<const std::string_view> args) { return jostle::play_command(args, std::cout, std::cerr); },
+     true},
     {"record", "write a scenario from an input script, verified by replaying what it wrote",
      jostle::record_help,
-     [](std::span<const std::string_view> args) { return jostle::record_command(args, std::cin, std::cout, std::cerr); }},
+     [](std::span<const std::string_view> args) { return jostle::record_command(args, std::cin, std::cout, std::cerr); },
+     true},
     {"check", "replay scenarios and compare them with their goldens (trace, expectations, screenshots)",
      jostle::check_help,
-     [](std::span<const std::string_view> args) { return jostle::check_command(args, std::cout, std::cerr); }},
+     [](std::span<const std::string_view> args) { return jostle::check_command(args, std::cout, std::cerr); },
+     true},
     {"imgdiff", "compare two PNG images within a tolerance (exit 0 match, 1 differ), optionally writing a diff picture",
      jostle::imgdiff_help,
-     [](std::span<const std::string_view> args) { return jostle::imgdiff_command(args, std::cout, std::cerr); }},
+     [](std::span<const std::string_view> args) { return jostle::imgdiff_command(args, std::cout, std::cerr); },
+     false},
 };
 
 const Command* find_command(std::string_view name) {
@@ -71,7 +80,8 @@ void print_usage(std::ostream& out) {
     out << "  help      show this text, or a command's help: jostle help <command>\n"
            "\n"
            "Run 'jostle <command> --help' for a command's arguments.\n"
-           "exit status: 0 ok, 1 a check failed, 2 bad input or usage.\n";
+           "exit status: 0 ok, 1 a check failed, 2 bad input or usage, 128 + N stopped by signal N\n"
+           "(130 Ctrl-C; play, record and check then leave only complete files).\n";
 }
 
 int usage_error(const std::string& message) {
@@ -113,7 +123,13 @@ int run(std::span<const std::string_view> args) {
         std::cout << command->help();
         return 0;
     }
-    return command->run(rest);
+    if (!command->stops_cleanly) return command->run(rest);
+    const jostle::InterruptHandler handler;
+    const int status = command->run(rest);
+    // A signal that came while the last files were renamed into place (held back then) still
+    // says the run was interrupted, though everything it wrote is complete.
+    if (const int sig = jostle::interrupt_signal(); sig != 0) throw jostle::Interrupted(sig);
+    return status;
 }
 
 }  // namespace
@@ -123,6 +139,9 @@ int main(int argc, char** argv) {
     const std::vector<std::string_view> args(argv + (argc > 0 ? 1 : 0), argv + argc);
     try {
         return run(args);
+    } catch (const jostle::Interrupted& e) {
+        std::cerr << "jostle: " << e.what() << ": stopped; files it finished are complete, unfinished ones were removed\n";
+        return e.exit_status();
     } catch (const std::exception& e) {
         std::cerr << "jostle: " << e.what() << '\n';
         return 2;

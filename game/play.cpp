@@ -15,6 +15,7 @@
 #include "arena.h"
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
+#include "jostle/core/interrupt.h"
 #include "jostle/replay/replay.h"
 
 namespace jostle {
@@ -77,7 +78,11 @@ options:
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
 
 Files are written atomically: an interrupted run never leaves a half-written file.
-exit status: 0 the run's expectations passed, 1 one failed, 2 bad usage or bad input.
+Ctrl-C (or SIGTERM) stops between ticks: frames already written are complete, an unfinished
+animation, sheet or trace is not written.
+
+exit status: 0 the run's expectations passed, 1 one failed, 2 bad usage or bad input,
+130 (143) stopped by Ctrl-C (SIGTERM).
 )";
 }
 
@@ -167,7 +172,14 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                 if (done == total) err << "\r\033[K" << std::flush;
             };
         }
-        const ReplayResult result = replay(game, scenario, options);
+        const ReplayResult result = [&] {
+            try {
+                return replay(game, scenario, options);
+            } catch (const Interrupted&) {
+                if (progress) err << "\n";  // keep the progress line; main says what happened
+                throw;
+            }
+        }();
         if (!trace_path.empty()) write_file_atomic(trace_path, format_trace(result, options.dump_every));
 
         std::int64_t passed = 0;

@@ -14,6 +14,7 @@
 #include "arena.h"
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
+#include "jostle/core/interrupt.h"
 #include "jostle/replay/record.h"
 #include "jostle/replay/replay.h"
 
@@ -70,7 +71,7 @@ options:
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
 
 exit status: 0 written and verified, 1 the read-back replay differed (nothing written),
-2 bad usage or bad input.
+2 bad usage or bad input, 130 (143) stopped by Ctrl-C (SIGTERM): nothing written.
 )";
 }
 
@@ -147,6 +148,7 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
             if (!file) throw InputError(SourceLocation{script_path, 0, 0}, "cannot open the script");
             script_text = read_all(file);
         }
+        throw_if_interrupted();  // Ctrl-C while the script was typed: the read ended early
         const std::vector<ScriptStep> script = parse_input_script(script_text, script_source, game.vocabulary());
         const Recording recording = record(game, desc, script, script_source);
         const std::string text = format_scenario(recording.scenario, game.vocabulary());

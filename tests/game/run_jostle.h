@@ -1,6 +1,7 @@
-// run_jostle.h: runs the built jostle program (JOSTLE_BINARY) for the end-to-end tests,
-// with stdin from a file and an optional working folder, collecting its exit status, stdout
-// and stderr (both pipes polled, so neither can fill up and block the child).
+// run_jostle.h: runs the built jostle program (JOSTLE_BINARY), or another program, for the
+// end-to-end tests, with stdin from a file and an optional working folder, collecting its exit
+// status, stdout and stderr (both pipes polled, so neither can fill up and block the child).
+// The interruption tests also have it send SIGINT a given time after the start.
 #pragma once
 
 #include <fcntl.h>
@@ -9,7 +10,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -22,12 +26,16 @@ namespace jostle::test {
 
 struct RunResult {
     int status = -1;  // exit status, or -1 if it did not exit normally
+    int term_signal = 0;     // the signal that ended it, if one did
+    bool signalled = false;  // the SIGINT asked for was sent before the program ended
     std::string out;
     std::string err;
 };
 
-inline RunResult run_jostle_binary(const std::vector<std::string>& args, const std::string& stdin_path = "/dev/null",
-                                   const std::string& cwd = "") {
+// Runs `program` (a path) with `args`.
+inline RunResult run_program(const std::string& program, const std::vector<std::string>& args,
+                             const std::string& stdin_path = "/dev/null", const std::string& cwd = "",
+                             int sigint_after_ms = -1) {
     RunResult result;
     int out_pipe[2];
     int err_pipe[2];
@@ -43,31 +51,44 @@ inline RunResult run_jostle_binary(const std::vector<std::string>& args, const s
     posix_spawn_file_actions_adddup2(&actions, err_pipe[1], 2);
     for (int fd : {out_pipe[0], out_pipe[1], err_pipe[0], err_pipe[1]}) posix_spawn_file_actions_addclose(&actions, fd);
 
-    std::vector<std::string> argv_strings = {JOSTLE_BINARY};
+    std::vector<std::string> argv_strings = {program};
     argv_strings.insert(argv_strings.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& s : argv_strings) argv.push_back(s.data());
     argv.push_back(nullptr);
 
     pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, JOSTLE_BINARY, &actions, nullptr, argv.data(), environ);
+    const int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     close(out_pipe[1]);
     close(err_pipe[1]);
     if (spawned != 0) {
         close(out_pipe[0]);
         close(err_pipe[0]);
-        ADD_FAILURE() << "cannot start " << JOSTLE_BINARY << ": " << std::strerror(spawned);
+        ADD_FAILURE() << "cannot start " << program << ": " << std::strerror(spawned);
         return result;
     }
     pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
     std::string* sinks[2] = {&result.out, &result.err};
     int open_count = 2;
+    const auto started = std::chrono::steady_clock::now();
     while (open_count > 0) {
-        if (poll(fds, 2, -1) < 0) {
+        int timeout = -1;
+        if (sigint_after_ms >= 0 && !result.signalled) {
+            const auto elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - started);
+            timeout = std::max(0, sigint_after_ms - static_cast<int>(elapsed.count()));
+            if (timeout == 0) {
+                kill(pid, SIGINT);
+                result.signalled = true;
+                timeout = -1;
+            }
+        }
+        const int ready = poll(fds, 2, timeout);
+        if (ready < 0) {
             if (errno == EINTR) continue;
             break;
         }
+        if (ready == 0) continue;
         for (int i = 0; i < 2; ++i) {
             if (fds[i].fd < 0 || fds[i].revents == 0) continue;
             char buffer[4096];
@@ -88,7 +109,14 @@ inline RunResult run_jostle_binary(const std::vector<std::string>& args, const s
     while (waitpid(pid, &wait_status, 0) < 0 && errno == EINTR) {
     }
     result.status = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
+    result.term_signal = WIFSIGNALED(wait_status) ? WTERMSIG(wait_status) : 0;
     return result;
+}
+
+// Runs the built jostle program.
+inline RunResult run_jostle_binary(const std::vector<std::string>& args, const std::string& stdin_path = "/dev/null",
+                                   const std::string& cwd = "", int sigint_after_ms = -1) {
+    return run_program(JOSTLE_BINARY, args, stdin_path, cwd, sigint_after_ms);
 }
 
 }  // namespace jostle::test

@@ -5,6 +5,7 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
+#include "jostle/core/interrupt.h"
 #include "jostle/core/text.h"
 #include "jostle/render/png_io.h"
 #include "jostle/replay/replay.h"
@@ -80,6 +82,24 @@ std::string html_escape(std::string_view text) {
             case '&': out += "&amp;"; break;
             case '"': out += "&quot;"; break;
             default: out += c;
+        }
+    }
+    return out;
+}
+
+// A file name as a relative URL: everything but unreserved characters percent-encoded, so a
+// scenario called "wall #2" still finds its images.
+std::string url_escape(std::string_view text) {
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    std::string out;
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (std::isalnum(u) != 0 || c == '-' || c == '_' || c == '.' || c == '~') {
+            out += c;
+        } else {
+            out += '%';
+            out += kHex[u >> 4];
+            out += kHex[u & 15];
         }
     }
     return out;
@@ -192,18 +212,24 @@ ScenarioCheck check_scenario(const Game& game, const std::string& scenario_path,
     return c;
 }
 
-std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks) {
-    // Phase 1: every new file into a temporary file beside its target. Any error here throws
-    // and the AtomicFiles remove their temporary files: nothing changed.
+std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks,
+                                        const std::function<void(const std::string& golden)>& on_staged) {
+    // Phase 1: every new file into a temporary file beside its target. Any error or signal
+    // here throws and the AtomicFiles remove their temporary files: nothing changed.
     std::vector<std::unique_ptr<AtomicFile>> files;
     std::vector<std::string> removals;
     std::vector<std::string> lines;
+    auto staged = [&]() {
+        if (on_staged) on_staged(files.back()->path());
+        throw_if_interrupted();
+    };
     for (const ScenarioCheck& c : checks) {
         if (!c.goldens_differ()) continue;
         std::string what;
         if (!c.trace_passed()) {
             files.push_back(std::make_unique<AtomicFile>(c.trace_path));
             files.back()->write(c.new_trace);
+            staged();
             what += c.trace_missing ? "trace created"
                     : c.first_divergent_tick ? "trace changed from tick " + std::to_string(*c.first_divergent_tick)
                                              : "trace length changed";
@@ -213,6 +239,7 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
             const std::vector<std::uint8_t> png = encode_png(image.actual, PngEncoding{.compression_level = 9});
             files.push_back(std::make_unique<AtomicFile>(image.golden_path));
             files.back()->write(png.data(), png.size());
+            staged();
             what += std::string(what.empty() ? "" : ", ") + fs::path(image.golden_path).filename().string() +
                     (image.golden_missing ? " created" : " changed");
         }
@@ -223,6 +250,7 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
         lines.push_back("updated " + c.path + ": " + what);
     }
     // Phase 2: renames and removals, with Ctrl-C and SIGTERM held until they are all done.
+    throw_if_interrupted();
     sigset_t block, previous;
     sigemptyset(&block);
     sigaddset(&block, SIGINT);
@@ -351,9 +379,11 @@ void write_report(const std::string& folder, const std::vector<ScenarioCheck>& c
     int failed = 0;
     for (const ScenarioCheck& c : checks) failed += c.passed() ? 0 : 1;
     html << "<h1>jostle check: " << failed << " of " << checks.size() << " scenarios failed</h1>\n";
+    std::set<std::string> ids;  // scenarios of the same name from different folders get _2, _3...
     for (const ScenarioCheck& c : checks) {
         if (c.passed()) continue;
-        const std::string id = c.name;
+        std::string id = c.name;
+        for (int n = 2; !ids.insert(id).second; ++n) id = c.name + "_" + std::to_string(n);
         html << "<div class=\"scenario\" id=\"" << html_escape(id) << "\">\n<h2 class=\"fail\">" << html_escape(c.path) << "</h2>\n";
         if (c.bad_input()) html << "<p class=\"error\">" << html_escape(c.error) << "</p>\n";
         if (c.trace_missing) html << "<p class=\"trace\">no golden trace</p>\n";
@@ -382,14 +412,14 @@ void write_report(const std::string& folder, const std::vector<ScenarioCheck>& c
                 write_png_atomic((fs::path(folder) / (base + ".expected.png")).string(), i.expected);
                 write_png_atomic((fs::path(folder) / (base + ".diff.png")).string(),
                                  diff_image(i.expected, i.actual));
-                html << "<figure><img class=\"expected\" src=\"" << base << ".expected.png\"><figcaption>expected</figcaption></figure>\n";
+                html << "<figure><img class=\"expected\" src=\"" << html_escape(url_escape(base)) << ".expected.png\"><figcaption>expected</figcaption></figure>\n";
             } else {
                 html << "<figure><figcaption>expected: no golden</figcaption></figure>\n";
             }
             write_png_atomic((fs::path(folder) / (base + ".actual.png")).string(), i.actual);
-            html << "<figure><img class=\"actual\" src=\"" << base << ".actual.png\"><figcaption>actual</figcaption></figure>\n";
+            html << "<figure><img class=\"actual\" src=\"" << html_escape(url_escape(base)) << ".actual.png\"><figcaption>actual</figcaption></figure>\n";
             if (!i.golden_missing) {
-                html << "<figure><img class=\"diff\" src=\"" << base << ".diff.png\"><figcaption>diff</figcaption></figure>\n";
+                html << "<figure><img class=\"diff\" src=\"" << html_escape(url_escape(base)) << ".diff.png\"><figcaption>diff</figcaption></figure>\n";
             }
             html << "</div>\n";
         }

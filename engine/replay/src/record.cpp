@@ -4,6 +4,7 @@
 #include <charconv>
 
 #include "jostle/core/error.h"
+#include "jostle/core/interrupt.h"
 #include "jostle/core/text.h"
 
 #ifndef JOSTLE_VERSION
@@ -101,6 +102,7 @@ Recording record(const Game& game, const RecordDesc& desc, std::span<const Scrip
     std::unique_ptr<Simulation> sim = game.start(s.level, s.seed, s.tick_rate);
 
     auto play = [&](InputFrame input) {
+        throw_if_interrupted();
         sim->tick(input);
         s.inputs.push_back(input);
         out.hashes.push_back(sim->state_hash());

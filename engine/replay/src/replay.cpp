@@ -9,6 +9,7 @@
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
+#include "jostle/core/interrupt.h"
 #include "jostle/core/text.h"
 #include "jostle/render/animation.h"
 #include "jostle/render/contact_sheet.h"
@@ -149,6 +150,7 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
     std::size_t next_screenshot = 0;
 
     for (std::int64_t t = 0; t < result.ticks; ++t) {
+        throw_if_interrupted();  // between ticks: finished frames are whole files, the rest are not started
         sim->tick(scenario.input(t));
         result.hashes.push_back(sim->state_hash());
         while (next_expectation < scenario.expectations.size() && scenario.expectations[next_expectation].tick == t) {

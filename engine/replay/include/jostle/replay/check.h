@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -89,8 +90,11 @@ ScenarioCheck check_scenario(const Game& game, const std::string& scenario_path,
 // temporary files first, then renamed into place (and stale goldens removed) with SIGINT and
 // SIGTERM held back, so an interrupted update changes nothing or everything. Returns one
 // line per changed scenario saying what changed. Throws InputError when a file cannot be
-// written (nothing is then changed).
-std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks);
+// written, and Interrupted (interrupt.h) when a signal arrives while the temporary files are
+// written; nothing is then changed and no temporary file is left. `on_staged` is called after
+// each temporary file is written, with the golden's path.
+std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks,
+                                        const std::function<void(const std::string& golden)>& on_staged = {});
 
 // A readable account of one check: PASS/FAIL line, then the details of every failure.
 std::string describe_check(const ScenarioCheck& check);
