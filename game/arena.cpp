@@ -6,12 +6,15 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <sstream>
 
 #include "jostle/core/error.h"
 #include "jostle/core/text.h"
 #include "jostle/core/hash.h"
 #include "jostle/render/overlay.h"
+#include "jostle/render/png_io.h"
 #include "level.h"
 
 #ifndef JOSTLE_SOURCE_ASSETS
@@ -21,19 +24,33 @@
 namespace jostle::game {
 namespace {
 
-enum class Kind : std::uint8_t { player, wall, crate, rock, pickup, cannon, bullet, ball };
-constexpr const char* kKindNames[] = {"player", "wall", "crate", "rock", "pickup", "cannon", "bullet", "ball"};
-constexpr const char* kEventNames[] = {"fire", "bullet_hit", "rock_hit", "pickup", "cannon_fire", "player_hit"};
+enum class Kind : std::uint8_t { player, wall, crate, rock, pickup, cannon, bullet, ball, prop, blob };
+constexpr const char* kKindNames[] = {"player", "wall", "crate", "rock", "pickup", "cannon", "bullet", "ball", "prop", "blob"};
+constexpr const char* kEventNames[] = {"fire",       "bullet_hit", "rock_hit",   "pickup",
+                                       "cannon_fire", "player_hit", "ricochet", "blob_touch"};
 // Bits of events_seen_, in the order of kEventNames.
-enum GameEvent : int { kEventFire, kEventBulletHit, kEventRockHit, kEventPickup, kEventCannonFire, kEventPlayerHit };
-constexpr const char* kVariableNames[] = {"score", "shots", "balls"};
+enum GameEvent : int {
+    kEventFire, kEventBulletHit, kEventRockHit, kEventPickup, kEventCannonFire, kEventPlayerHit, kEventRicochet, kEventBlobTouch
+};
+constexpr const char* kVariableNames[] = {"score", "shots", "balls", "fastest"};
 
-std::string read_file(const std::string& path) {
+std::string read_file(const std::string& path, const char* what = "the level file") {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot open the level file");
+    if (!in) throw InputError(SourceLocation{path, 0, 0}, std::string("cannot open ") + what);
     std::ostringstream text;
     text << in.rdbuf();
     return text.str();
+}
+
+// The sprite files (assets/sprites/*.png), by name, sorted.
+std::vector<std::string> sprite_names(const std::string& assets_dir) {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(assets_dir + "/sprites", ec)) {
+        if (entry.path().extension() == ".png") names.push_back(entry.path().stem().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
 }
 
 struct Thing {
@@ -43,7 +60,10 @@ struct Thing {
     bool alive = true;
     int lifetime = -1;        // ticks left; -1 forever
     int period = 0;           // cannons
-    float speed = 0.0f;       // cannons
+    float speed = 0.0f;       // cannons, blobs
+    int bounces = 0;          // bullets: ricochets left
+    Vec2 from, to;            // blobs: walking from `from` to `to`, then back
+    std::string sprite;       // props
 };
 
 // Colours of the game's own drawing (the overlay has its own).
@@ -58,11 +78,31 @@ constexpr Color kBulletColor{255, 255, 200, 255};
 constexpr Color kPlayerColor{90, 180, 255, 255};
 constexpr Color kHudColor{230, 230, 230, 255};
 
+// The game's pictures, and the collision masks made from them (alpha >= 128 is solid).
+struct Sprites {
+    std::map<std::string, Image, std::less<>> images;
+    std::map<std::string, std::shared_ptr<const Mask>, std::less<>> masks;
+
+    const Image& image(std::string_view name) const { return images.find(name)->second; }
+    bool has(std::string_view name) const { return images.find(name) != images.end(); }
+    std::shared_ptr<const Mask> mask(std::string_view name) {
+        auto it = masks.find(name);
+        if (it == masks.end()) {
+            const Image& im = image(name);
+            it = masks.emplace(std::string(name),
+                               std::make_shared<const Mask>(Mask::from_alpha(im.rgba.data(), im.width, im.height, 127)))
+                     .first;
+        }
+        return it->second;
+    }
+};
+
 class ArenaSimulation : public Simulation {
 public:
-    ArenaSimulation(const Level& level, const Rules& rules, std::uint64_t seed, int tick_rate)
-        : level_(level), rules_(rules), world_(WorldDesc{.gravity = {0.0f, 0.0f}, .seed = seed}),
-          dt_(1.0f / static_cast<float>(tick_rate)) {
+    ArenaSimulation(const Level& level, const std::string& level_path, Sprites sprites, const Rules& rules,
+                    std::uint64_t seed, int tick_rate)
+        : level_(level), sprites_(std::move(sprites)), rules_(rules),
+          world_(WorldDesc{.gravity = {0.0f, 0.0f}, .seed = seed}), dt_(1.0f / static_cast<float>(tick_rate)) {
         // The ship: a triangle pointing along +x.
         const Vec2 ship[] = {{14.0f, 0.0f}, {-10.0f, -9.0f}, {-10.0f, 9.0f}};
         player_ = add(Thing{.name = "player", .kind = Kind::player},
@@ -83,11 +123,31 @@ public:
                     break;
                 case LevelThing::Kind::rock_circle:
                     add(Thing{.name = t.name, .kind = Kind::rock},
-                        EntityDesc{.kind = BodyKind::dynamic, .position = t.position, .collider = Collider::circle(t.radius)});
+                        EntityDesc{.kind = BodyKind::dynamic, .position = t.position, .collider = Collider::circle(t.radius),
+                                   .inverse_mass = 1.0f / t.mass});
                     break;
                 case LevelThing::Kind::rock_polygon:
                     add(Thing{.name = t.name, .kind = Kind::rock},
-                        EntityDesc{.kind = BodyKind::dynamic, .position = t.position, .collider = Collider::polygon(t.polygon)});
+                        EntityDesc{.kind = BodyKind::dynamic, .position = t.position, .collider = Collider::polygon(t.polygon),
+                                   .inverse_mass = 1.0f / t.mass});
+                    break;
+                case LevelThing::Kind::prop:
+                    if (!sprites_.has(t.sprite)) {
+                        throw InputError(SourceLocation{level_path, t.line, 0},
+                                         "no sprite '" + t.sprite + "' (expected a file sprites/" + t.sprite + ".png in the assets)");
+                    }
+                    add(Thing{.name = t.name, .kind = Kind::prop, .sprite = t.sprite},
+                        EntityDesc{.kind = BodyKind::static_body, .position = t.position,
+                                   .collider = Collider::mask(sprites_.mask(t.sprite))});
+                    break;
+                case LevelThing::Kind::blob:
+                    if (!sprites_.has("blob")) {
+                        throw InputError(SourceLocation{level_path, t.line, 0},
+                                         "no sprite 'blob' (expected a file sprites/blob.png in the assets)");
+                    }
+                    add(Thing{.name = t.name, .kind = Kind::blob, .speed = t.speed, .from = t.position, .to = t.size},
+                        EntityDesc{.kind = BodyKind::kinematic, .position = t.position,
+                                   .collider = Collider::mask(sprites_.mask("blob"))});
                     break;
                 case LevelThing::Kind::pickup:
                     add(Thing{.name = t.name, .kind = Kind::pickup},
@@ -106,6 +166,7 @@ public:
         drive_player(input);
         fire(input);
         fire_cannons();
+        walk_blobs();
         drag();
         world_.step(dt_);
         handle_events();
@@ -128,6 +189,9 @@ public:
         for (const Thing& t : things_) {
             h.u32(t.alive ? 1u : 0u);
             h.u32(static_cast<std::uint32_t>(t.lifetime));
+            h.u32(static_cast<std::uint32_t>(t.bounces));
+            h.f32(t.from.x);
+            h.f32(t.from.y);
         }
         return h.value();
     }
@@ -151,6 +215,7 @@ public:
         if (name == "score") return static_cast<double>(score_);
         if (name == "shots") return static_cast<double>(shots_);
         if (name == "balls") return static_cast<double>(balls_);
+        if (name == "fastest") return static_cast<double>(fastest());
         return std::nullopt;
     }
 
@@ -173,7 +238,7 @@ public:
                                   {"balls", std::to_string(balls_)},
                                   {"cooldown", std::to_string(cooldown_)}}});
         for (const Thing& t : things_) {
-            if (!t.alive || t.kind == Kind::wall) continue;  // walls never move
+            if (!t.alive || t.kind == Kind::wall || t.kind == Kind::prop) continue;  // they never move
             const EntityDesc& e = *world_.get(t.id);
             EntityDump d{t.name,
                          {{"kind", kKindNames[static_cast<int>(t.kind)]},
@@ -183,6 +248,7 @@ public:
                           {"vx", shortest_text(e.velocity.x)},
                           {"vy", shortest_text(e.velocity.y)}}};
             if (t.lifetime >= 0) d.fields.push_back({"lifetime", std::to_string(t.lifetime)});
+            if (t.kind == Kind::bullet) d.fields.push_back({"bounces", std::to_string(t.bounces)});
             out.push_back(std::move(d));
         }
         return out;
@@ -191,32 +257,60 @@ public:
     Vec2 level_size() const override { return level_.size; }
 
     void draw(Renderer& renderer, const DrawOptions& options) const override {
+        // Sprites go into each renderer's atlas once.
+        if (renderer.serial() != renderer_serial_) {
+            sprite_ids_.clear();
+            for (const auto& [name, image] : sprites_.images) sprite_ids_[name] = renderer.add_sprite(image);
+            renderer_serial_ = renderer.serial();
+        }
+        // Each thing as its sprite, or as its shape in its colour when the assets have no
+        // such sprite (a test's own assets folder, say).
+        const auto draw = [&](const Shape& shape, std::string_view name, Vec2 centre, float angle, float scale, Color color) {
+            const auto it = sprite_ids_.find(name);
+            if (it == sprite_ids_.end()) {
+                renderer.fill_shape(shape, color);
+                return;
+            }
+            renderer.draw_sprite(it->second, centre, angle, Vec2{scale, scale});
+        };
         renderer.fill_rect(Aabb{{0.0f, 0.0f}, level_.size}, kBackground);
         for (const Thing& t : things_) {
             if (!t.alive) continue;
             const Shape shape = world_.shape_of(t.id);
+            const EntityDesc& e = *world_.get(t.id);
             switch (t.kind) {
                 case Kind::wall: renderer.fill_shape(shape, kWallColor); break;
-                case Kind::crate:
-                    renderer.fill_shape(shape, kCrateColor);
-                    renderer.outline_shape(shape, Color{90, 60, 30, 255}, 2.0f);
-                    break;
-                case Kind::rock: renderer.fill_shape(shape, kRockColor); break;
-                case Kind::pickup: renderer.fill_shape(shape, kPickupColor); break;
-                case Kind::cannon: {
-                    renderer.fill_shape(shape, kCannonColor);
-                    const EntityDesc& e = *world_.get(t.id);
-                    const Vec2 dir{std::cos(e.angle), std::sin(e.angle)};
-                    renderer.draw_line(e.position, e.position + dir * 16.0f, kCannonColor, 6.0f);
+                case Kind::crate: {
+                    const Obb& box = std::get<Obb>(shape);
+                    const auto it = sprite_ids_.find("crate");
+                    if (it == sprite_ids_.end()) renderer.fill_shape(shape, kCrateColor);
+                    else renderer.draw_sprite(it->second, box.center, box.angle, box.half * (2.0f / 32.0f));
                     break;
                 }
-                case Kind::ball: renderer.fill_shape(shape, kBallColor); break;
-                case Kind::bullet: {
-                    const EntityDesc& e = *world_.get(t.id);
+                case Kind::rock:
+                    if (const Circle* c = std::get_if<Circle>(&shape)) {
+                        draw(shape, "boulder", c->center, e.angle, c->radius / 16.0f, kRockColor);
+                    } else {
+                        renderer.fill_shape(shape, kRockColor);
+                        renderer.outline_shape(shape, Color{80, 74, 66, 255}, 2.0f);
+                    }
+                    break;
+                case Kind::pickup: draw(shape, "coin", e.position, 0.0f, std::get<Circle>(shape).radius / 8.0f, kPickupColor); break;
+                case Kind::cannon: draw(shape, "cannon", e.position, e.angle, 1.0f, kCannonColor); break;
+                case Kind::ball: draw(shape, "ball", e.position, 0.0f, std::get<Circle>(shape).radius / 6.0f, kBallColor); break;
+                case Kind::bullet:
                     renderer.draw_line(e.position - e.velocity * (dt_ * 0.5f), e.position, kBulletColor, 2.0f);
                     break;
+                case Kind::player: draw(shape, "ship", e.position, e.angle, 1.0f, kPlayerColor); break;
+                case Kind::prop:
+                case Kind::blob: {
+                    // Exactly over the mask's pixels (masks sit on whole pixels).
+                    const PlacedMask& m = std::get<PlacedMask>(shape);
+                    const Vec2 centre{static_cast<float>(m.x) + static_cast<float>(m.mask->width()) * 0.5f,
+                                      static_cast<float>(m.y) + static_cast<float>(m.mask->height()) * 0.5f};
+                    renderer.draw_sprite(sprite_ids_.find(t.kind == Kind::blob ? "blob" : t.sprite)->second, centre);
+                    break;
                 }
-                case Kind::player: renderer.fill_shape(shape, kPlayerColor); break;
             }
         }
         if (options.overlay) draw_overlay(renderer, world_);
@@ -258,9 +352,13 @@ private:
         const EntityDesc& p = *world_.get(things_[player_].id);
         const Vec2 forward{std::cos(p.angle), std::sin(p.angle)};
         ++shots_;
-        add(Thing{.name = "bullet_" + std::to_string(shots_), .kind = Kind::bullet, .lifetime = rules_.bullet_lifetime},
+        // Bullets ricochet off walls (the world reflects them); the game ends them on anything
+        // else, or when their bounces are used up.
+        add(Thing{.name = "bullet_" + std::to_string(shots_), .kind = Kind::bullet, .lifetime = rules_.bullet_lifetime,
+                  .bounces = rules_.bullet_bounces},
             EntityDesc{.kind = BodyKind::bullet, .position = p.position + forward * 15.0f,
-                       .velocity = forward * rules_.bullet_speed, .ignore = things_[player_].id});
+                       .velocity = forward * rules_.bullet_speed, .on_hit = BulletResponse::ricochet,
+                       .ignore = things_[player_].id});
         cooldown_ = rules_.fire_cooldown;
         events_seen_ |= 1u << kEventFire;
     }
@@ -283,6 +381,32 @@ private:
         }
     }
 
+    // Blobs walk to one end of their patrol, then back, at their speed.
+    void walk_blobs() {
+        for (Thing& t : things_) {
+            if (!t.alive || t.kind != Kind::blob) continue;
+            const EntityDesc& e = *world_.get(t.id);
+            const Vec2 to_go = t.to - e.position;
+            const float distance = length(to_go);
+            if (distance <= t.speed * dt_) {
+                // Arrives this tick: exactly at the end, then turns round.
+                world_.set_velocity(t.id, to_go * (1.0f / dt_));
+                std::swap(t.from, t.to);
+            } else {
+                world_.set_velocity(t.id, to_go * (t.speed / distance));
+            }
+        }
+    }
+
+    // The fastest crate or rock (px/s): a crowd has settled when this is near 0.
+    float fastest() const {
+        float best = 0.0f;
+        for (const Thing& t : things_) {
+            if (t.alive && (t.kind == Kind::crate || t.kind == Kind::rock)) best = std::max(best, length(world_.get(t.id)->velocity));
+        }
+        return best;
+    }
+
     // Top-down drag: pushed crates and rocks slow down and stop.
     void drag() {
         for (const Thing& t : things_) {
@@ -300,10 +424,18 @@ private:
             if (a == nullptr || b == nullptr) continue;
             switch (e.type) {
                 case EventType::bullet_hit:
+                    if (!a->alive) break;  // ended by an earlier hit this step
                     events_seen_ |= 1u << kEventBulletHit;
                     if (b->kind == Kind::rock) {
                         score_ += rules_.rock_hit_score;
                         events_seen_ |= 1u << kEventRockHit;
+                    }
+                    if (b->kind == Kind::wall && a->bounces > 0) {
+                        --a->bounces;
+                        events_seen_ |= 1u << kEventRicochet;
+                    } else if (world_.alive(a->id)) {
+                        world_.destroy(a->id);
+                        a->alive = false;
                     }
                     break;
                 case EventType::trigger_enter:
@@ -314,11 +446,12 @@ private:
                         a->alive = false;
                     }
                     break;
-                case EventType::contact_begin:
-                    if ((a->kind == Kind::ball && b->kind == Kind::player) || (a->kind == Kind::player && b->kind == Kind::ball)) {
-                        events_seen_ |= 1u << kEventPlayerHit;
-                    }
+                case EventType::contact_begin: {
+                    const auto pair = [&](Kind x, Kind y) { return (a->kind == x && b->kind == y) || (a->kind == y && b->kind == x); };
+                    if (pair(Kind::ball, Kind::player)) events_seen_ |= 1u << kEventPlayerHit;
+                    if (pair(Kind::blob, Kind::player)) events_seen_ |= 1u << kEventBlobTouch;
                     break;
+                }
                 default: break;
             }
         }
@@ -339,6 +472,7 @@ private:
     }
 
     Level level_;
+    Sprites sprites_;
     Rules rules_;
     World world_;
     float dt_;
@@ -350,6 +484,9 @@ private:
     std::int64_t balls_ = 0;
     int cooldown_ = 0;
     std::uint32_t events_seen_ = 0;
+    // The sprites' ids in the renderer that drew last (Renderer::serial says which).
+    mutable std::uint64_t renderer_serial_ = 0;
+    mutable std::map<std::string, SpriteId, std::less<>> sprite_ids_;
 };
 
 }  // namespace
@@ -371,14 +508,24 @@ ArenaGame::ArenaGame(std::string assets_dir, Rules rules) : assets_dir_(std::mov
 std::string ArenaGame::level_path(const std::string& level) const { return assets_dir_ + "/levels/" + level + ".level"; }
 
 std::string ArenaGame::level_hash(const std::string& level) const {
+    // The level and every sprite: masks change the game, pictures change the screenshots.
     Hasher h;
     h.str(read_file(level_path(level)));
+    for (const std::string& name : sprite_names(assets_dir_)) {
+        h.str(name);
+        h.str(read_file(assets_dir_ + "/sprites/" + name + ".png", "the sprite"));
+    }
     return hex16(h.value());
 }
 
 std::unique_ptr<Simulation> ArenaGame::start(const std::string& level, std::uint64_t seed, int tick_rate) const {
     const std::string path = level_path(level);
-    return std::make_unique<ArenaSimulation>(parse_level(read_file(path), path, level), rules_, seed, tick_rate);
+    Level parsed = parse_level(read_file(path), path, level);
+    Sprites sprites;
+    for (const std::string& name : sprite_names(assets_dir_)) {
+        sprites.images[name] = read_png(assets_dir_ + "/sprites/" + name + ".png");
+    }
+    return std::make_unique<ArenaSimulation>(parsed, path, std::move(sprites), rules_, seed, tick_rate);
 }
 
 }  // namespace jostle::game

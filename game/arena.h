@@ -3,9 +3,13 @@
 // (triggers) score; cannons fire fast balls. Every rule lives here, not in the engine; the
 // replay module reaches it through the Game and Simulation interfaces.
 //
-// Kinds: player, wall, crate, rock, pickup, cannon, bullet, ball.
-// Variables: score (10 per pickup, 1 per bullet hit on a rock), shots, balls.
-// Events: fire, bullet_hit, rock_hit, pickup, cannon_fire, player_hit.
+// Bullets ricochet off walls (twice); anything else ends them. Blob creatures patrol.
+// Kinds: player, wall, crate, rock, pickup, cannon, bullet, ball, prop, blob.
+// Variables: score (10 per pickup, 1 per bullet hit on a rock), shots, balls, fastest (the
+// speed of the fastest crate or rock, px/s: a settled crowd has it near 0).
+// Events: fire, bullet_hit, rock_hit, pickup, cannon_fire, player_hit (a ball hit the ship),
+// ricochet, blob_touch (the ship touched a blob).
+// Pictures come from assets/sprites (tools/make-sprites); props and blobs collide by them.
 #pragma once
 
 #include <memory>
@@ -24,6 +28,7 @@ struct Rules {
     float bullet_speed = 900.0f;    // px/s
     int fire_cooldown = 8;          // ticks between shots
     int bullet_lifetime = 90;       // ticks
+    int bullet_bounces = 2;         // ricochets off walls before a bullet ends
     float ball_radius = 5.0f;
     int ball_lifetime = 240;        // ticks
     int pickup_score = 10;

@@ -61,7 +61,8 @@ TEST_SHARD_STATUS_FILE is touched.
 Ctrl-C (or SIGTERM) stops between ticks; an update then changes no golden, and no temporary
 file is left.
 
-exit status: 0 every scenario passed (or was updated), 1 a regression, 2 bad usage or input,
+exit status: 0 every scenario passed (or was updated), 1 a regression (with --update: an
+expectation failed, which new goldens cannot fix), 2 bad usage or input,
 130 (143) stopped by Ctrl-C (SIGTERM).
 )";
 }
@@ -122,7 +123,10 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             try {
                 for (std::size_t i = next++; i < scenarios.size(); i = next++) {
                     checks[i] = check_scenario(game, scenarios[i], options);
-                    if (!update || !checks[i].goldens_differ() || checks[i].bad_input()) {
+                    // An update reports the goldens it changes at the end; what it cannot fix
+                    // (a failed expectation, bad input) is reported here as in a plain check.
+                    if (!update || !checks[i].goldens_differ() || checks[i].bad_input() ||
+                        !checks[i].failed_expectations.empty()) {
                         const std::lock_guard<std::mutex> lock(print);
                         out << describe_check(checks[i]) << std::flush;
                     }
@@ -155,9 +159,15 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
                 }
             });
             for (const std::string& line : lines) out << line << "\n";
-            out << "checked " << checks.size() << " scenarios: " << lines.size() << " updated\n";
+            std::size_t expectations_failed = 0;
+            for (const ScenarioCheck& c : checks) expectations_failed += c.failed_expectations.empty() ? 0 : 1;
+            out << "checked " << checks.size() << " scenarios: " << lines.size() << " updated";
+            if (expectations_failed > 0) {
+                out << ", " << expectations_failed << " with failing expectations (an update cannot fix those)";
+            }
+            out << "\n";
             if (!report.empty()) write_report(report, checks);
-            return 0;
+            return expectations_failed > 0 ? 1 : 0;
         }
         if (!report.empty()) write_report(report, checks);
         out << "checked " << checks.size() << " scenarios: " << checks.size() - static_cast<std::size_t>(failed + bad)

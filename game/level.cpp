@@ -75,7 +75,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
         const std::string_view line = text.substr(at, end - at);
         at = end + 1;
         ++line_number;
-        const std::vector<Word> words = split_words(line);
+        std::vector<Word> words = split_words(line);
         if (line_number == 1) {
             if (words.size() != 2 || words[0].text != "jostle-level" || words[1].text != "1") {
                 throw InputError(SourceLocation{source, 1, 1}, "expected 'jostle-level 1' as the first line");
@@ -128,6 +128,11 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
         } else if (head == "rock") {
             if (r.size() < 3) r.expect_words(3, 3, "rock NAME circle|poly ...");
             take_name();
+            if (r.size() >= 5 && r.word(r.size() - 2).text == "mass") {
+                thing.mass = r.positive(r.size() - 1, "mass");
+                if (thing.mass > 1000.0f) r.fail(r.word(r.size() - 1).column, "expected a mass of at most 1000");
+                words.resize(words.size() - 2);  // the shape's words are checked as if it were not there
+            }
             if (r.word(2).text == "circle") {
                 r.expect_words(6, 6, "rock NAME circle X Y RADIUS");
                 thing.kind = LevelThing::Kind::rock_circle;
@@ -162,9 +167,22 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             thing.angle = r.number(4);
             thing.period = r.whole(5, 1, 100000, "a period in ticks");
             thing.speed = r.positive(6, "ball speed");
+        } else if (head == "prop") {
+            r.expect_words(5, 5, "prop NAME SPRITE X Y");
+            take_name();
+            thing.kind = LevelThing::Kind::prop;
+            thing.sprite = std::string(r.word(2).text);
+            thing.position = {r.number(3), r.number(4)};
+        } else if (head == "blob") {
+            r.expect_words(7, 7, "blob NAME X0 Y0 X1 Y1 SPEED");
+            take_name();
+            thing.kind = LevelThing::Kind::blob;
+            thing.position = {r.number(2), r.number(3)};
+            thing.size = {r.number(4), r.number(5)};
+            thing.speed = r.positive(6, "speed");
         } else {
             r.fail(words[0].column, "unknown line '" + std::string(head) +
-                          "' (expected size, player, wall, crate, rock, pickup or cannon)");
+                          "' (expected size, player, wall, crate, rock, pickup, cannon, prop or blob)");
         }
         level.things.push_back(std::move(thing));
     }

@@ -8,8 +8,14 @@
 //   rock r1 circle 400 300 18               NAME circle x y radius: a pushable circle
 //   rock r2 poly 450 120 -15 -10 15 -12 20 8 -5 16   NAME poly x y, then the vertices
 //                                           around (x, y): a pushable convex polygon
+//   rock r3 circle 400 300 18 mass 4        either rock, heavier (mass 1 by default)
 //   pickup p1 500 400 10                    NAME x y radius: a trigger worth 10 points
 //   cannon k1 620 240 3.1416 90 600         NAME x y angle period_ticks ball_speed
+//   prop t1 tree 320 200                    NAME SPRITE x y: a fixed thing that collides by
+//                                           the pixels of assets/sprites/SPRITE.png
+//                                           (alpha >= 128), centred on (x, y)
+//   blob b1 100 400 300 400 40              NAME x0 y0 x1 y1 speed: the blob creature
+//                                           (pixel-perfect) patrolling between two points
 //
 // '#' starts a comment; blank lines are ignored. Names are unique. Errors name the file, the
 // line and what was expected.
@@ -26,16 +32,18 @@ namespace jostle::game {
 inline constexpr int kLevelFormatVersion = 1;
 
 struct LevelThing {
-    enum class Kind { wall, crate, rock_circle, rock_polygon, pickup, cannon };
+    enum class Kind { wall, crate, rock_circle, rock_polygon, pickup, cannon, prop, blob };
     Kind kind = Kind::wall;
     std::string name;
-    Vec2 position;          // walls: min corner
-    Vec2 size;              // walls: max corner; crates: width, height
+    Vec2 position;          // walls: min corner; blobs: the first end of the patrol
+    Vec2 size;              // walls: max corner; crates: width, height; blobs: the other end
     float angle = 0.0f;     // crates, cannons
     float radius = 0.0f;    // circle rocks, pickups
     Polygon polygon;        // polygon rocks, around position
     int period = 0;         // cannons: ticks between balls
-    float speed = 0.0f;     // cannons: ball speed, px/s
+    float speed = 0.0f;     // cannons: ball speed; blobs: walking speed (px/s)
+    float mass = 1.0f;      // rocks
+    std::string sprite;     // props: the picture (and so the mask)
     int line = 0;
 };
 

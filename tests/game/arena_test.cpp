@@ -108,9 +108,11 @@ TEST_F(Arena, LevelHashIsAFingerprintOfTheFile) {
 
 TEST_F(Arena, WhatExpectationsCanName) {
     const auto sim = start("open");
-    EXPECT_EQ(sim->kinds(), (std::vector<std::string>{"player", "wall", "crate", "rock", "pickup", "cannon", "bullet", "ball"}));
-    EXPECT_EQ(sim->variables(), (std::vector<std::string>{"score", "shots", "balls"}));
-    EXPECT_EQ(sim->events(), (std::vector<std::string>{"fire", "bullet_hit", "rock_hit", "pickup", "cannon_fire", "player_hit"}));
+    EXPECT_EQ(sim->kinds(), (std::vector<std::string>{"player", "wall", "crate", "rock", "pickup", "cannon", "bullet", "ball",
+                                                       "prop", "blob"}));
+    EXPECT_EQ(sim->variables(), (std::vector<std::string>{"score", "shots", "balls", "fastest"}));
+    EXPECT_EQ(sim->events(), (std::vector<std::string>{"fire", "bullet_hit", "rock_hit", "pickup", "cannon_fire", "player_hit",
+                                                        "ricochet", "blob_touch"}));
     EXPECT_EQ(sim->ticks_done(), 0);
     EXPECT_EQ(sim->level_size().x, 400.0f);
     EXPECT_EQ(sim->level_size().y, 300.0f);
@@ -214,14 +216,27 @@ TEST_F(Arena, FireSpawnsABulletAndObeysTheCooldown) {
     }
     EXPECT_NEAR(position(*sim, "bullet_1").x, 115.0f + 17.0f * 15.0f, 1e-2f);
     EXPECT_FALSE(sim->event_happened("bullet_hit"));
-    // Tick 17: bullet_1 reaches the wall at x = 380 and is gone.
+    // Tick 17: bullet_1 reaches the wall at x = 380 and ricochets straight back.
     sim->tick(InputFrame{});
     EXPECT_TRUE(sim->event_happened("bullet_hit"));
+    EXPECT_TRUE(sim->event_happened("ricochet"));
     EXPECT_FALSE(sim->event_happened("rock_hit"));
-    EXPECT_FALSE(sim->entity_position("bullet_1").has_value());
-    EXPECT_EQ(sim->count("bullet"), 2);
+    EXPECT_NEAR(float_field(*sim, "bullet_1", "vx"), -900.0f, 1e-3f);
+    EXPECT_EQ(field(*sim, "bullet_1", "bounces"), "1");
+    EXPECT_EQ(sim->count("bullet"), 3);
     EXPECT_EQ(variable(*sim, "shots"), 3.0);
     EXPECT_EQ(variable(*sim, "score"), 0.0);  // walls score nothing
+    // Back across the room (372 px at 15 px a tick) to the left wall: the second and last
+    // bounce, then across again: the third wall hit ends it, long before its lifetime would.
+    int gone_at = -1;
+    for (int t = 18; t < 89 && gone_at < 0; ++t) {
+        sim->tick(InputFrame{});
+        if (t == 44) {
+            EXPECT_EQ(field(*sim, "bullet_1", "bounces"), "0");
+        }
+        if (!sim->entity_position("bullet_1")) gone_at = t;
+    }
+    EXPECT_EQ(gone_at, 67);
 }
 
 TEST_F(Arena, TappingFireInsideTheCooldownDoesNothing) {
@@ -410,6 +425,57 @@ TEST_F(Arena, BadOrMissingLevelFilesAreInputErrors) {
         EXPECT_EQ(std::string(e.what()), missing + ": cannot open the level file");
     }
     EXPECT_THROW(game.level_hash("missing"), InputError);
+}
+
+TEST_F(Arena, PropsAndBlobsNeedTheirSprites) {
+    write_level("treed", std::string(kOpenRoom) + "prop t1 tree 200 150\n");
+    write_level("blobbed", std::string(kOpenRoom) + "blob b1 200 150 300 150 30\n");
+    const ArenaGame game(assets());
+    const std::string level = (dir_ / "levels" / "treed.level").string();
+    try {
+        game.start("treed", 1, 60);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), level + ":6: no sprite 'tree' (expected a file sprites/tree.png in the assets)");
+    }
+    EXPECT_THROW(game.start("blobbed", 1, 60), InputError);
+    // With the sprites they start, and a sprite changes the level's hash.
+    const std::string before = game.level_hash("treed");
+    fs::copy(fs::path(JOSTLE_ASSETS_DIR) / "sprites", dir_ / "sprites");
+    EXPECT_NE(game.level_hash("treed"), before);
+    EXPECT_NO_THROW(game.start("treed", 1, 60));
+}
+
+TEST_F(Arena, ABlobWalksToTheEndOfItsPatrolAndBack) {
+    fs::copy(fs::path(JOSTLE_ASSETS_DIR) / "sprites", dir_ / "sprites");
+    // 60 px at 30 px/s: 120 ticks out, 120 back.
+    write_level("blobbed", std::string(kOpenRoom) + "blob b1 200 250 260 250 30\n");
+    const auto sim = start("blobbed");
+    for (int t = 0; t < 60; ++t) sim->tick(InputFrame{});
+    EXPECT_NEAR(position(*sim, "b1").x, 230.0f, 1e-3f);
+    for (int t = 60; t < 120; ++t) sim->tick(InputFrame{});
+    EXPECT_NEAR(position(*sim, "b1").x, 260.0f, 1e-3f);
+    EXPECT_EQ(position(*sim, "b1").y, 250.0f);
+    for (int t = 120; t < 180; ++t) sim->tick(InputFrame{});
+    EXPECT_NEAR(position(*sim, "b1").x, 230.0f, 1e-3f);
+    for (int t = 180; t < 240; ++t) sim->tick(InputFrame{});
+    EXPECT_NEAR(position(*sim, "b1").x, 200.0f, 1e-3f);
+    EXPECT_EQ(sim->count("blob"), 1);
+    EXPECT_FALSE(sim->event_happened("blob_touch"));
+}
+
+TEST_F(Arena, FastestIsTheQuickestCrateOrRock) {
+    write_level("pushed", std::string(kOpenRoom) + "rock r1 circle 125 150 8\n");
+    const auto sim = start("pushed");
+    EXPECT_EQ(variable(*sim, "fastest"), 0.0);
+    double most = 0.0;
+    for (int t = 0; t < 20; ++t) {
+        sim->tick(hold({kUp}));
+        most = std::max(most, variable(*sim, "fastest"));
+    }
+    EXPECT_GT(most, 50.0) << "the ship pushes the rock";
+    for (int t = 0; t < 200; ++t) sim->tick(InputFrame{});
+    EXPECT_LT(variable(*sim, "fastest"), 0.01) << "drag stops it";
 }
 
 }  // namespace

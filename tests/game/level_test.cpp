@@ -135,6 +135,41 @@ TEST(Level, TheShippedArena) {
 // Bad input
 // ---------------------------------------------------------------------------------------
 
+TEST(Level, MassPropsAndBlobs) {
+    const Level level = parse_level(kHead +
+                                        "rock heavy circle 100 110 16 mass 4\n"
+                                        "rock light poly 150 120 -14 -10 12 -14 18 6 mass 0.5\n"
+                                        "rock plain circle 10 10 5\n"
+                                        "prop t1 tree 320 200\n"
+                                        "blob b1 100 400 300 410 40\n",
+                                    "l.level", "mine");
+    ASSERT_EQ(level.things.size(), 5u);
+    EXPECT_EQ(level.things[0].mass, 4.0f);
+    EXPECT_EQ(level.things[0].radius, 16.0f);
+    EXPECT_EQ(level.things[1].mass, 0.5f);
+    EXPECT_EQ(level.things[1].polygon.count, 3);
+    EXPECT_EQ(level.things[2].mass, 1.0f);
+    EXPECT_EQ(level.things[3].kind, LevelThing::Kind::prop);
+    EXPECT_EQ(level.things[3].sprite, "tree");
+    EXPECT_EQ(level.things[3].position.x, 320.0f);
+    EXPECT_EQ(level.things[3].position.y, 200.0f);
+    const LevelThing& blob = level.things[4];
+    EXPECT_EQ(blob.kind, LevelThing::Kind::blob);
+    EXPECT_EQ(blob.position.x, 100.0f);
+    EXPECT_EQ(blob.size.x, 300.0f);
+    EXPECT_EQ(blob.size.y, 410.0f);
+    EXPECT_EQ(blob.speed, 40.0f);
+}
+
+TEST(LevelErrors, MassPropsAndBlobs) {
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 0"), "l.level:4:26: expected a positive mass, got '0'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 2000"), "l.level:4:26: expected a mass of at most 1000");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS'");
+    EXPECT_EQ(error_of_line("prop t tree 1"), "l.level:4:14: expected 'prop NAME SPRITE X Y'");
+    EXPECT_EQ(error_of_line("blob b 1 2 3 4 0"), "l.level:4:16: expected a positive speed, got '0'");
+    EXPECT_EQ(error_of_line("blob b 1 2 3 4"), "l.level:4:15: expected 'blob NAME X0 Y0 X1 Y1 SPEED'");
+}
+
 TEST(LevelErrors, NotALevelFile) {
     EXPECT_EQ(error_of(""), "l.level:1: empty file: expected 'jostle-level 1'");
     EXPECT_EQ(error_of("jostle-level 2\nsize 1 1\nplayer 0 0\n"), "l.level:1:1: expected 'jostle-level 1' as the first line");
@@ -144,9 +179,9 @@ TEST(LevelErrors, NotALevelFile) {
 }
 
 TEST(LevelErrors, UnknownLineKind) {
-    EXPECT_EQ(error_of_line("tree t 1 2"), "l.level:4:1: unknown line 'tree' (expected size, player, wall, crate, rock, pickup or cannon)");
+    EXPECT_EQ(error_of_line("tree t 1 2"), "l.level:4:1: unknown line 'tree' (expected size, player, wall, crate, rock, pickup, cannon, prop or blob)");
     EXPECT_EQ(error_of_line("  Wall w 0 0 1 1"),  // the column of the word, not of the line
-              "l.level:4:3: unknown line 'Wall' (expected size, player, wall, crate, rock, pickup or cannon)");
+              "l.level:4:3: unknown line 'Wall' (expected size, player, wall, crate, rock, pickup, cannon, prop or blob)");
 }
 
 TEST(LevelErrors, DuplicateAndReservedNames) {

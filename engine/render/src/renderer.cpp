@@ -4,6 +4,7 @@
 #include "jostle/render/renderer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <variant>
@@ -27,6 +28,7 @@ constexpr int kWhite = 2;    // the white block at (0, 0) that solid colour samp
 
 struct Renderer::Impl {
     RenderBackend kind;
+    std::uint64_t serial = 0;
     std::unique_ptr<detail::Backend> backend;
 
     // The atlas: shelves packed left to right, top to bottom; it doubles (up to 4096) when full.
@@ -119,6 +121,8 @@ bool shape_valid(const Shape& s) {
 
 Renderer::Renderer(const RendererDesc& desc) : impl_(std::make_unique<Impl>()) {
     impl_->kind = desc.backend;
+    static std::atomic<std::uint64_t> next_serial{1};
+    impl_->serial = next_serial++;
     impl_->backend = desc.backend == RenderBackend::osmesa ? detail::make_osmesa_backend() : detail::make_null_backend();
     impl_->atlas = Image{256, 256, std::vector<std::uint8_t>(256u * 256u * 4u, 0)};
     for (int y = 0; y < kWhite; ++y) {
@@ -145,6 +149,8 @@ Renderer::Renderer(const RendererDesc& desc) : impl_(std::make_unique<Impl>()) {
 Renderer::~Renderer() = default;
 
 RenderBackend Renderer::backend() const { return impl_->kind; }
+
+std::uint64_t Renderer::serial() const { return impl_->serial; }
 
 SpriteId Renderer::add_sprite(const Image& image) {
     Impl& r = *impl_;

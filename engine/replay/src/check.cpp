@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -138,8 +139,17 @@ ScenarioCheck check_scenario(const Game& game, const std::string& scenario_path,
         bool exists = false;
         const std::string golden_text = read_file(c.trace_path, &exists);
         c.trace_missing = !exists;
+        std::optional<ReplayResult> parsed;
         if (exists) {
-            const ReplayResult golden = parse_trace(golden_text, c.trace_path);
+            try {
+                parsed = parse_trace(golden_text, c.trace_path);
+            } catch (const InputError& e) {
+                c.trace_missing = true;
+                c.trace_error = e.what();
+            }
+        }
+        if (parsed) {
+            const ReplayResult& golden = *parsed;
             c.expected_ticks = golden.ticks;
             const std::size_t common = std::min(golden.hashes.size(), run.hashes.size());
             for (std::size_t t = 0; t < common; ++t) {
@@ -184,8 +194,14 @@ ScenarioCheck check_scenario(const Game& game, const std::string& scenario_path,
             if (!wanted.insert(check.golden_path).second) continue;  // two screenshots at one tick
             check.actual = image;
             if (fs::exists(check.golden_path)) {
-                check.expected = read_png(check.golden_path);
-                check.compare = compare_images(check.expected, check.actual, options.image_tolerance);
+                try {
+                    check.expected = read_png(check.golden_path);
+                    check.compare = compare_images(check.expected, check.actual, options.image_tolerance);
+                } catch (const InputError& e) {
+                    check.expected = Image{};
+                    check.golden_missing = true;
+                    check.golden_error = e.what();
+                }
             } else {
                 check.golden_missing = true;
             }
@@ -230,7 +246,8 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
             files.push_back(std::make_unique<AtomicFile>(c.trace_path));
             files.back()->write(c.new_trace);
             staged();
-            what += c.trace_missing ? "trace created"
+            what += !c.trace_error.empty() ? "trace replaced (it could not be read)"
+                    : c.trace_missing          ? "trace created"
                     : c.first_divergent_tick ? "trace changed from tick " + std::to_string(*c.first_divergent_tick)
                                              : "trace length changed";
         }
@@ -241,7 +258,9 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
             files.back()->write(png.data(), png.size());
             staged();
             what += std::string(what.empty() ? "" : ", ") + fs::path(image.golden_path).filename().string() +
-                    (image.golden_missing ? " created" : " changed");
+                    (!image.golden_error.empty() ? " replaced (it could not be read)"
+                     : image.golden_missing      ? " created"
+                                                 : " changed");
         }
         for (const std::string& stale : c.stale_goldens) {
             removals.push_back(stale);
@@ -275,7 +294,9 @@ std::string describe_check(const ScenarioCheck& c) {
     }
     out << (c.passed() ? "PASS " : "FAIL ") << c.path << " (" << c.actual_ticks << " ticks, " << c.expectations
         << " expectations, " << c.images.size() << " screenshots)\n";
-    if (c.trace_missing) {
+    if (!c.trace_error.empty()) {
+        out << "  trace: the golden cannot be read: " << c.trace_error << " (run 'jostle check --update' to replace it)\n";
+    } else if (c.trace_missing) {
         out << "  trace: no golden " << c.trace_path << " (run 'jostle check --update' to create it)\n";
     } else if (c.first_divergent_tick) {
         out << "  trace: first divergent tick " << *c.first_divergent_tick;
@@ -295,7 +316,10 @@ std::string describe_check(const ScenarioCheck& c) {
             << ", found " << e.actual << "\n";
     }
     for (const ImageCheck& i : c.images) {
-        if (i.golden_missing) {
+        if (!i.golden_error.empty()) {
+            out << "  screenshot tick " << i.tick << ": the golden cannot be read: " << i.golden_error
+                << " (run 'jostle check --update' to replace it)\n";
+        } else if (i.golden_missing) {
             out << "  screenshot tick " << i.tick << ": no golden " << i.golden_path << " (run 'jostle check --update' to create it)\n";
         } else if (!i.compare.within_tolerance) {
             out << "  screenshot tick " << i.tick << ": ";
@@ -386,7 +410,11 @@ void write_report(const std::string& folder, const std::vector<ScenarioCheck>& c
         for (int n = 2; !ids.insert(id).second; ++n) id = c.name + "_" + std::to_string(n);
         html << "<div class=\"scenario\" id=\"" << html_escape(id) << "\">\n<h2 class=\"fail\">" << html_escape(c.path) << "</h2>\n";
         if (c.bad_input()) html << "<p class=\"error\">" << html_escape(c.error) << "</p>\n";
-        if (c.trace_missing) html << "<p class=\"trace\">no golden trace</p>\n";
+        if (!c.trace_error.empty()) {
+            html << "<p class=\"trace\">the golden trace cannot be read: " << html_escape(c.trace_error) << "</p>\n";
+        } else if (c.trace_missing) {
+            html << "<p class=\"trace\">no golden trace</p>\n";
+        }
         if (c.first_divergent_tick) {
             html << "<p class=\"divergence\">first divergent tick: <b class=\"first-divergent-tick\">" << *c.first_divergent_tick
                  << "</b></p>\n";
@@ -414,7 +442,9 @@ void write_report(const std::string& folder, const std::vector<ScenarioCheck>& c
                                  diff_image(i.expected, i.actual));
                 html << "<figure><img class=\"expected\" src=\"" << html_escape(url_escape(base)) << ".expected.png\"><figcaption>expected</figcaption></figure>\n";
             } else {
-                html << "<figure><figcaption>expected: no golden</figcaption></figure>\n";
+                html << "<figure><figcaption>expected: "
+                     << (i.golden_error.empty() ? "no golden" : "unreadable golden: " + html_escape(i.golden_error))
+                     << "</figcaption></figure>\n";
             }
             write_png_atomic((fs::path(folder) / (base + ".actual.png")).string(), i.actual);
             html << "<figure><img class=\"actual\" src=\"" << html_escape(url_escape(base)) << ".actual.png\"><figcaption>actual</figcaption></figure>\n";

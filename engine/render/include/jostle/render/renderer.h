@@ -54,6 +54,9 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     RenderBackend backend() const;
+    // Different for every Renderer made in this process, so callers that cache SpriteIds
+    // (a game adding its sprites once per renderer) can tell renderers apart.
+    std::uint64_t serial() const;
 
     // Adds an image (straight RGBA) to the atlas. Throws jostle::InputError when it does not
     // fit (sides up to 2048 px; the atlas is one 4096 x 4096 page).

@@ -7,7 +7,8 @@
 // check_scenario replays the scenario and compares: the hash trace (the first divergent
 // tick, and the entities and fields that differ at the first dump from that tick on), the
 // expectations, and the screenshots (image_compare.h). A missing golden is a failure; only an
-// update creates goldens (commit_updates).
+// update creates goldens (commit_updates). An unreadable golden (a merge conflict in a trace,
+// a truncated PNG) counts as missing, with the reason, so an update can replace it.
 #pragma once
 
 #include <cstdint>
@@ -39,7 +40,8 @@ struct FieldChange {
 struct ImageCheck {
     std::int64_t tick = 0;
     std::string golden_path;
-    bool golden_missing = false;
+    bool golden_missing = false;  // absent, or unreadable (golden_error says why)
+    std::string golden_error;
     CompareResult compare;
     Image expected;  // empty when missing
     Image actual;
@@ -59,7 +61,8 @@ struct ScenarioCheck {
     std::string error; // bad input (exit 2): the message; the rest is then empty
 
     std::string trace_path;
-    bool trace_missing = false;
+    bool trace_missing = false;  // absent, or unreadable (trace_error says why)
+    std::string trace_error;
     std::int64_t expected_ticks = 0;
     std::int64_t actual_ticks = 0;
     std::optional<std::int64_t> first_divergent_tick;

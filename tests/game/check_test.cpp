@@ -1,0 +1,754 @@
+// check_test.cpp: `jostle check`, the gameplay regression check, on scenarios in a temporary
+// folder. In process (check_scenario with a tweaked game::Rules): a rule change is caught at
+// the first tick it can matter, naming the changed fields, with a differing screenshot and a
+// report (expected / actual / diff PNGs); a rule the scenario never reaches changes nothing.
+// End to end (the built binary): missing and stale goldens fail (exit 1) and a plain check
+// creates nothing; --update creates, changes and removes goldens and says exactly what it did,
+// changes nothing the second time, and writes nothing when any scenario is bad input (exit 2);
+// sharding (TEST_ / GTEST_ variables, the status file, malformed values); --jobs gives the
+// same results and files as one job (OSMesa rendering on several threads); usage errors;
+// --report (report.html with the first divergent tick and its images, junit.xml).
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "arena.h"
+#include "check.h"
+#include "jostle/core/text.h"
+#include "jostle/render/png_io.h"
+#include "jostle/replay/check.h"
+#include "jostle/replay/replay.h"
+#include "game/run_jostle.h"
+
+namespace jostle {
+namespace {
+
+namespace fs = std::filesystem;
+
+using ::testing::HasSubstr;
+using test::RunResult;
+
+const std::string kAssets = JOSTLE_ASSETS_DIR;
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
+std::string usage_error(const std::string& message) {
+    return "jostle check: " + message + "\nRun 'jostle check --help' for usage.\n";
+}
+
+// The pixels diff_image paints solid red: the ones that differ (the rest is faded toward white).
+std::int64_t red_pixels(const Image& image) {
+    std::int64_t n = 0;
+    for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
+        n += image.rgba[i] == 255 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 0 && image.rgba[i + 3] == 255 ? 1 : 0;
+    }
+    return n;
+}
+
+// Sets or unsets environment variables for its lifetime; the child jostle inherits `environ`.
+class EnvGuard {
+public:
+    EnvGuard() = default;
+    EnvGuard(const EnvGuard&) = delete;
+    EnvGuard& operator=(const EnvGuard&) = delete;
+    ~EnvGuard() {
+        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
+            if (it->second) ::setenv(it->first.c_str(), it->second->c_str(), 1);
+            else ::unsetenv(it->first.c_str());
+        }
+    }
+    void set(const std::string& name, const std::string& value) {
+        save(name);
+        ::setenv(name.c_str(), value.c_str(), 1);
+    }
+    void unset(const std::string& name) {
+        save(name);
+        ::unsetenv(name.c_str());
+    }
+
+private:
+    void save(const std::string& name) {
+        for (const auto& s : saved_) {
+            if (s.first == name) return;
+        }
+        const char* v = std::getenv(name.c_str());
+        saved_.emplace_back(name, v != nullptr ? std::optional<std::string>(v) : std::nullopt);
+    }
+    std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
+};
+
+constexpr const char* kShardVariables[] = {"TEST_TOTAL_SHARDS",  "TEST_SHARD_INDEX",  "TEST_SHARD_STATUS_FILE",
+                                           "GTEST_TOTAL_SHARDS", "GTEST_SHARD_INDEX", "GTEST_SHARD_STATUS_FILE"};
+
+// Nothing held for ticks 0-9, then "up" (drive forward) from tick 10; the frame after tick 29.
+// The ship starts at (100, 240) facing +x (angle 0), with nothing in its way for 50 px.
+constexpr const char* kDrive =
+    "0-9 -\n"
+    "10-29 up\n"
+    "at 29 screenshot\n"
+    "at 30 end\n";
+
+// The same scenario with the drive starting at tick 15, and another screenshot.
+constexpr const char* kDriveLater =
+    "0-14 -\n"
+    "15-29 up\n"
+    "at 25 screenshot\n"
+    "at 29 screenshot\n"
+    "at 30 end\n";
+
+// Five ticks of turning, no screenshot.
+constexpr const char* kTurn =
+    "0-4 left\n"
+    "at 5 end\n";
+
+class Check : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::path(::testing::TempDir()) /
+               (std::string("check_") + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+                std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        level_hash_ = game::ArenaGame(kAssets).level_hash("arena");
+        // The child must not inherit a sharding of this test binary, test hooks or other assets.
+        for (const char* name : kShardVariables) env_.unset(name);
+        env_.unset("JOSTLE_ASSETS");
+        env_.unset("JOSTLE_TEST_INTERRUPT");
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string folder() const { return dir_.string(); }
+
+    // The arena scenario header (the current level hash) and `body`, as NAME in `where`.
+    std::string scenario(const std::string& name, const std::string& body, const fs::path& where = {}) {
+        const fs::path file = (where.empty() ? dir_ : where) / name;
+        std::ofstream(file, std::ios::binary) << "jostle-scenario 1\nengine 0.1.0\nlevel arena\nseed 1\ntick-rate 60\nlevel-hash "
+                                              << level_hash_ << "\n"
+                                              << body;
+        return file.string();
+    }
+
+    // Creates the goldens of `scenario_path` with the standard rules, in process.
+    void bless(const std::string& scenario_path) {
+        const ScenarioCheck c = check_scenario(standard_, scenario_path);
+        ASSERT_FALSE(c.bad_input()) << c.error;
+        commit_updates({c});
+        ASSERT_TRUE(check_scenario(standard_, scenario_path).passed());
+    }
+
+    // `jostle check` with the source tree's assets (given first, so an option left without
+    // its value at the end stays without it).
+    RunResult check(std::vector<std::string> args) {
+        args.insert(args.begin(), {"check", "--assets", kAssets});
+        return test::run_jostle_binary(args);
+    }
+
+    // The file names in a folder, sorted.
+    std::vector<std::string> listing(const fs::path& where) const {
+        std::vector<std::string> names;
+        for (const auto& entry : fs::directory_iterator(where)) names.push_back(entry.path().filename().string());
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+
+    // Every file's contents and modification time, by name.
+    std::map<std::string, std::pair<std::string, fs::file_time_type>> snapshot(const fs::path& where) const {
+        std::map<std::string, std::pair<std::string, fs::file_time_type>> files;
+        for (const auto& entry : fs::directory_iterator(where)) {
+            files[entry.path().filename().string()] = {read_text(entry.path()), fs::last_write_time(entry.path())};
+        }
+        return files;
+    }
+
+    std::string pass_line(const std::string& scenario_path, int ticks, int screenshots) const {
+        return "PASS " + scenario_path + " (" + std::to_string(ticks) + " ticks, 0 expectations, " + std::to_string(screenshots) +
+               " screenshots)";
+    }
+
+    fs::path dir_;
+    std::string level_hash_;
+    EnvGuard env_;
+    const game::ArenaGame standard_{kAssets};
+};
+
+// ---- rules (in process) ----------------------------------------------------------------
+
+TEST_F(Check, ARuleChangeIsCaughtAtTheFirstTickItCanMatter) {
+    const std::string s = scenario("drive.scn", kDrive);
+    const ScenarioCheck first = check_scenario(standard_, s);
+    ASSERT_FALSE(first.bad_input()) << first.error;
+    EXPECT_TRUE(first.trace_missing);
+    EXPECT_EQ(commit_updates({first}), std::vector<std::string>{"updated " + s + ": trace created, drive.tick_29.png created"});
+    ASSERT_TRUE(check_scenario(standard_, s).passed()) << describe_check(check_scenario(standard_, s));
+
+    game::Rules faster;
+    faster.drive_speed = 160.0f;  // from 150
+    const game::ArenaGame changed(kAssets, faster);
+    const ScenarioCheck c = check_scenario(changed, s);
+    ASSERT_FALSE(c.bad_input()) << c.error;
+    EXPECT_FALSE(c.passed());
+    EXPECT_TRUE(c.goldens_differ());
+    EXPECT_FALSE(c.trace_missing);
+    EXPECT_EQ(c.expected_ticks, 30);
+    EXPECT_EQ(c.actual_ticks, 30);
+
+    // Why tick 10: drive_speed enters only through drive_player, and only on a tick that holds
+    // "up" (velocity = forward * drive_speed); on ticks 0-9 nothing is held, so the ship's
+    // velocity stays 0 * coast = 0 and every state after ticks 0..9 is the same under both
+    // rules. Tick 10 is the first to hold "up": its velocity is set to 150 or 160 px/s before
+    // the world steps, so the state after tick 10 (hashes[10]) is the first that differs.
+    ASSERT_TRUE(c.first_divergent_tick.has_value());
+    EXPECT_EQ(*c.first_divergent_tick, 10);
+    const ReplayResult golden = parse_trace(read_text(c.trace_path), c.trace_path);
+    const ReplayResult run = replay(changed, load_scenario(s, changed.vocabulary()));
+    ASSERT_EQ(golden.hashes.size(), 30u);
+    ASSERT_EQ(run.hashes.size(), 30u);
+    for (std::size_t t = 0; t < 10; ++t) EXPECT_EQ(golden.hashes[t], run.hashes[t]) << "tick " << t;
+    EXPECT_NE(golden.hashes[10], run.hashes[10]);
+    EXPECT_EQ(c.expected_hash, golden.hashes[10]);
+    EXPECT_EQ(c.actual_hash, run.hashes[10]);
+
+    // Dumps are every 10th tick: tick 10 itself. The ship drives along +x, so exactly its x
+    // and its x velocity differ (y stays 240 with sin(0) = 0); nothing else has been touched.
+    ASSERT_EQ(c.dump_tick, std::optional<std::int64_t>(10));
+    ASSERT_EQ(c.changes.size(), 2u) << describe_check(c);
+    EXPECT_EQ(c.changes[0].entity, "player");
+    EXPECT_EQ(c.changes[0].field, "x");
+    EXPECT_EQ(c.changes[0].expected, "102.5");  // 100 + 150 / 60
+    EXPECT_EQ(c.changes[0].actual, shortest_text(100.0f + 160.0f / 60.0f));
+    EXPECT_EQ(c.changes[1].entity, "player");
+    EXPECT_EQ(c.changes[1].field, "vx");
+    EXPECT_EQ(c.changes[1].expected, "150");
+    EXPECT_EQ(c.changes[1].actual, "160");
+
+    // The screenshot after tick 29: 20 ticks at 10 px/s more put the ship 3 1/3 px further right.
+    ASSERT_EQ(c.images.size(), 1u);
+    const ImageCheck& image = c.images[0];
+    EXPECT_EQ(image.tick, 29);
+    EXPECT_EQ(image.golden_path, path("drive.tick_29.png"));
+    EXPECT_FALSE(image.golden_missing);
+    EXPECT_FALSE(image.passed());
+    EXPECT_TRUE(image.compare.same_size);
+    EXPECT_FALSE(image.compare.identical);
+    EXPECT_GT(image.compare.differing_pixels, 0);
+    EXPECT_TRUE(c.stale_goldens.empty());
+    EXPECT_TRUE(c.failed_expectations.empty());
+
+    EXPECT_EQ(describe_check(c),
+              "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+              "  trace: first divergent tick 10 (expected hash " + hex16(golden.hashes[10]) + ", got " + hex16(run.hashes[10]) + ")\n"
+              "  at tick 10 (the first dumped tick from there on), expected -> actual:\n"
+              "    player x: 102.5 -> " + c.changes[0].actual + "\n"
+              "    player vx: 150 -> 160\n"
+              "  screenshot tick 29: " + std::to_string(image.compare.differing_pixels) + " pixels differ (largest channel difference " +
+              std::to_string(image.compare.max_channel_delta) + ") from " + path("drive.tick_29.png") + "\n");
+
+    // The report: the golden as expected.png, this run as actual.png, and the diff with
+    // exactly the differing pixels in red.
+    const fs::path report = dir_ / "report";
+    write_report(report.string(), {c});
+    EXPECT_TRUE(fs::exists(report / "report.html"));
+    EXPECT_TRUE(fs::exists(report / "junit.xml"));
+    ASSERT_TRUE(fs::exists(report / "drive.tick_29.expected.png"));
+    ASSERT_TRUE(fs::exists(report / "drive.tick_29.actual.png"));
+    ASSERT_TRUE(fs::exists(report / "drive.tick_29.diff.png"));
+    EXPECT_EQ(read_png((report / "drive.tick_29.expected.png").string()).rgba, read_png(path("drive.tick_29.png")).rgba);
+    EXPECT_EQ(read_png((report / "drive.tick_29.actual.png").string()).rgba, image.actual.rgba);
+    const Image diff = read_png((report / "drive.tick_29.diff.png").string());
+    EXPECT_EQ(diff.width, 640);
+    EXPECT_EQ(diff.height, 480);
+    EXPECT_GT(red_pixels(diff), 0);
+    EXPECT_EQ(red_pixels(diff), image.compare.differing_pixels);
+
+    // The goldens are untouched by a failing check.
+    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"drive.scn", "drive.tick_29.png", "drive.trace", "report"}));
+}
+
+TEST_F(Check, ARuleTheScenarioNeverReachesChangesNothing) {
+    // ball_lifetime only matters once a cannon has fired: assets/levels/arena.level has one
+    // cannon, period 120, which fires when (ticks done + 1) % 120 == 0, first on tick 119. The
+    // 30-tick drive never gets there (and fires nothing itself), so it passes.
+    const std::string s = scenario("drive.scn", kDrive);
+    bless(s);
+    game::Rules short_balls;
+    short_balls.ball_lifetime = 10;  // from 240
+    const game::ArenaGame changed(kAssets, short_balls);
+    const ScenarioCheck c = check_scenario(changed, s);
+    EXPECT_TRUE(c.passed()) << describe_check(c);
+    EXPECT_FALSE(c.goldens_differ());
+    EXPECT_EQ(describe_check(c), pass_line(s, 30, 1) + "\n");
+
+    // The rule is live: a run long enough for the cannon's first ball diverges on tick 119,
+    // when the ball is made with a lifetime of 10 instead of 240 (its lifetime is hashed).
+    const std::string wait = scenario("wait.scn", "at 125 end\n");
+    bless(wait);
+    const ScenarioCheck w = check_scenario(changed, wait);
+    EXPECT_FALSE(w.passed());
+    ASSERT_TRUE(w.first_divergent_tick.has_value()) << describe_check(w);
+    EXPECT_EQ(*w.first_divergent_tick, 119);
+}
+
+// ---- missing and stale goldens ---------------------------------------------------------
+
+TEST_F(Check, AMissingTraceFailsAndAPlainCheckCreatesNothing) {
+    const std::string s = scenario("drive.scn", kDrive);
+    const RunResult r = check({s});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+                     "  trace: no golden " + path("drive.trace") + " (run 'jostle check --update' to create it)\n"
+                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
+                     "checked 1 scenarios: 0 passed, 1 failed\n");
+    EXPECT_EQ(listing(dir_), std::vector<std::string>{"drive.scn"});
+}
+
+TEST_F(Check, AMissingScreenshotGoldenFails) {
+    const std::string s = scenario("drive.scn", kDrive);
+    bless(s);
+    fs::remove(path("drive.tick_29.png"));
+    const RunResult r = check({s});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
+                     "checked 1 scenarios: 0 passed, 1 failed\n");
+    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"drive.scn", "drive.trace"}));
+}
+
+TEST_F(Check, AStaleScreenshotGoldenFails) {
+    const std::string s = scenario("drive.scn", kDrive);
+    bless(s);
+    fs::copy_file(path("drive.tick_29.png"), path("drive.tick_5.png"));
+    const RunResult r = check({s});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run 'jostle check --update' to remove it)\n"
+                     "checked 1 scenarios: 0 passed, 1 failed\n");
+    EXPECT_TRUE(fs::exists(path("drive.tick_5.png")));  // only an update removes it
+}
+
+// ---- --update --------------------------------------------------------------------------
+
+TEST_F(Check, UpdateCreatesChangesAndRemovesGoldensSayingHow) {
+    const std::string a = scenario("a.scn", kDrive);
+    const std::string b = scenario("b.scn", kTurn);
+    RunResult r = check({"--update", folder()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "updated " + a + ": trace created, a.tick_29.png created\n"
+                     "updated " + b + ": trace created\n"
+                     "checked 2 scenarios: 2 updated\n");
+    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"a.scn", "a.tick_29.png", "a.trace", "b.scn", "b.trace"}));
+
+    r = check({folder()});
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.out, pass_line(a, 30, 1) + "\n" + pass_line(b, 5, 0) + "\nchecked 2 scenarios: 2 passed, 0 failed\n");
+
+    // a.scn now drives from tick 15 (its trace first differs on tick 10, where the old run
+    // started driving) and adds a screenshot; a.tick_3.png is stale. b.scn is unchanged, so
+    // it is reported as it is checked.
+    scenario("a.scn", kDriveLater);
+    fs::copy_file(path("a.tick_29.png"), path("a.tick_3.png"));
+    r = check({"--update", folder()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, pass_line(b, 5, 0) + "\n"
+                     "updated " + a + ": trace changed from tick 10, a.tick_25.png created, a.tick_29.png changed, a.tick_3.png removed\n"
+                     "checked 2 scenarios: 1 updated\n");
+    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"a.scn", "a.tick_25.png", "a.tick_29.png", "a.trace", "b.scn", "b.trace"}));
+
+    r = check({folder()});
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.out, pass_line(a, 30, 2) + "\n" + pass_line(b, 5, 0) + "\nchecked 2 scenarios: 2 passed, 0 failed\n");
+
+    // Nothing left to change: no file is touched.
+    const auto before = snapshot(dir_);
+    r = check({"--update", folder()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, pass_line(a, 30, 2) + "\n" + pass_line(b, 5, 0) + "\nchecked 2 scenarios: 0 updated\n");
+    EXPECT_TRUE(snapshot(dir_) == before);
+}
+
+TEST_F(Check, UpdateWithBadInputWritesNothing) {
+    const std::string bad = scenario("bad.scn", "0 up\n1 jump\n");
+    const std::string good = scenario("good.scn", kDrive);  // no goldens yet
+    fs::path stale = path("good.tick_3.png");
+    std::ofstream(stale, std::ios::binary) << "not looked at";
+    const auto before = snapshot(dir_);
+    const RunResult r = check({"--update", folder()});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "ERROR " + bad + ": " + bad +
+                         ":8:3: unknown action 'jump' (expected one of: left, right, up, down, fire, or '-' for none)\n"
+                         "checked 2 scenarios: 0 passed, 1 failed, 1 with bad input\n");
+    EXPECT_EQ(r.err, "jostle check: nothing updated: fix the bad input first\n");
+    EXPECT_TRUE(snapshot(dir_) == before);
+    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"bad.scn", "good.scn", "good.tick_3.png"}));
+}
+
+// An update re-blesses traces and screenshots, but an expectation is the scenario's own claim:
+// a failing one is reported as in a plain check and makes the update exit 1.
+TEST_F(Check, UpdateCannotFixAFailingExpectation) {
+    const std::string s = scenario("e.scn", "0-9 up\nat 9 expect var score = 5\nat 10 end\n");
+    RunResult r = check({"--update", s});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectations, 0 screenshots)\n"
+                     "  trace: no golden " + path("e.trace") + " (run 'jostle check --update' to create it)\n"
+                     "  " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
+                     "updated " + s + ": trace created\n"
+                     "checked 1 scenarios: 1 updated, 1 with failing expectations (an update cannot fix those)\n");
+    EXPECT_TRUE(fs::exists(path("e.trace"))) << "the trace is still blessed";
+
+    r = check({"--update", s});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectations, 0 screenshots)\n"
+                     "  " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
+                     "checked 1 scenarios: 0 updated, 1 with failing expectations (an update cannot fix those)\n");
+}
+
+// A golden that cannot be read (a merge conflict in the trace, a truncated PNG) fails the
+// check with the reason, and an update replaces it.
+TEST_F(Check, UnreadableGoldensFailAndAnUpdateReplacesThem) {
+    const std::string s = scenario("drive.scn", kDrive);
+    bless(s);
+    const std::string trace = read_text(path("drive.trace"));
+    const std::string png = read_text(path("drive.tick_29.png"));
+    std::ofstream(path("drive.trace"), std::ios::binary) << "<<<<<<< HEAD\n" << trace;
+    std::ofstream(path("drive.tick_29.png"), std::ios::binary) << png.substr(0, png.size() / 2);
+
+    RunResult r = check({s});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "");
+    EXPECT_THAT(r.out, HasSubstr("FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+                                 "  trace: the golden cannot be read: " + path("drive.trace") + ":1:"));
+    EXPECT_THAT(r.out, HasSubstr("(run 'jostle check --update' to replace it)\n"
+                                 "  screenshot tick 29: the golden cannot be read: " + path("drive.tick_29.png")));
+    EXPECT_THAT(r.out, HasSubstr("checked 1 scenarios: 0 passed, 1 failed\n"));
+
+    r = check({"--update", s});
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_EQ(r.out, "updated " + s + ": trace replaced (it could not be read), drive.tick_29.png replaced (it could not be read)\n"
+                     "checked 1 scenarios: 1 updated\n");
+    EXPECT_EQ(read_text(path("drive.trace")), trace);
+    EXPECT_EQ(read_text(path("drive.tick_29.png")), png);
+}
+
+// ---- sharding --------------------------------------------------------------------------
+
+TEST_F(Check, ShardsCheckEveryTotalthScenarioAndTouchTheStatusFile) {
+    std::vector<std::string> all;
+    for (int i = 0; i < 5; ++i) {
+        all.push_back(scenario(std::string("s") + std::to_string(i) + ".scn", kTurn));
+        bless(all.back());
+    }
+    for (const std::string prefix : {"TEST_", "GTEST_"}) {
+        std::set<std::string> seen;
+        for (int index = 0; index < 3; ++index) {
+            SCOPED_TRACE(prefix + "SHARD_INDEX " + std::to_string(index));
+            const std::string status = path(prefix + "status_" + std::to_string(index));
+            EnvGuard env;
+            env.set(prefix + "TOTAL_SHARDS", "3");
+            env.set(prefix + "SHARD_INDEX", std::to_string(index));
+            env.set(prefix + "SHARD_STATUS_FILE", status);
+            const RunResult r = check({folder()});
+            EXPECT_EQ(r.status, 0) << r.err;
+            EXPECT_EQ(r.err, "");
+            std::string expected;
+            int count = 0;
+            for (int i = index; i < 5; i += 3) {
+                expected += pass_line(all[static_cast<std::size_t>(i)], 5, 0) + "\n";
+                ++count;
+                EXPECT_TRUE(seen.insert(all[static_cast<std::size_t>(i)]).second);
+            }
+            expected += std::string("checked ") + std::to_string(count) + " scenarios: " + std::to_string(count) + " passed, 0 failed\n";
+            EXPECT_EQ(r.out, expected);
+            EXPECT_TRUE(fs::exists(status));
+        }
+        EXPECT_EQ(seen, std::set<std::string>(all.begin(), all.end()));
+    }
+
+    // In process: every third from the index, the status file touched even when no shard is set.
+    const std::vector<std::string> names = {"n0", "n1", "n2", "n3", "n4", "n5", "n6"};
+    {
+        EnvGuard env;
+        env.set("TEST_TOTAL_SHARDS", "3");
+        env.set("TEST_SHARD_INDEX", "1");
+        EXPECT_EQ(select_shard(names), (std::vector<std::string>{"n1", "n4"}));
+        env.set("TEST_SHARD_INDEX", "2");
+        EXPECT_EQ(select_shard(names), (std::vector<std::string>{"n2", "n5"}));
+        env.set("TEST_TOTAL_SHARDS", "1");
+        env.set("TEST_SHARD_INDEX", "0");
+        EXPECT_EQ(select_shard(names), names);
+    }
+    {
+        EnvGuard env;
+        env.set("TEST_SHARD_STATUS_FILE", path("touched"));
+        EXPECT_EQ(select_shard(names), names);
+        EXPECT_TRUE(fs::exists(path("touched")));
+    }
+}
+
+TEST_F(Check, MalformedShardVariablesExitTwo) {
+    const std::string s = scenario("s.scn", kTurn);
+    struct Case {
+        const char* total;  // nullptr: unset
+        const char* index;
+        std::string message;
+    };
+    const Case cases[] = {
+        {"3", "3", "TEST_SHARD_INDEX 3 must be below TEST_TOTAL_SHARDS 3"},
+        {"3", "7", "TEST_SHARD_INDEX 7 must be below TEST_TOTAL_SHARDS 3"},
+        {"0", "0", "TEST_SHARD_INDEX 0 must be below TEST_TOTAL_SHARDS 0"},
+        {"3", "x", "TEST_SHARD_INDEX: expected a whole number >= 0, got 'x'"},
+        {"3", "-1", "TEST_SHARD_INDEX: expected a whole number >= 0, got '-1'"},
+        {"3", "1.5", "TEST_SHARD_INDEX: expected a whole number >= 0, got '1.5'"},
+        {"three", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 0, got 'three'"},
+        {"-3", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 0, got '-3'"},
+        {"3", nullptr, "TEST_SHARD_INDEX: expected a whole number >= 0, got ''"},
+        {nullptr, "0", "TEST_TOTAL_SHARDS: expected a whole number >= 0, got ''"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.message);
+        EnvGuard env;
+        if (c.total != nullptr) env.set("TEST_TOTAL_SHARDS", c.total);
+        if (c.index != nullptr) env.set("TEST_SHARD_INDEX", c.index);
+        const RunResult r = check({s});
+        EXPECT_EQ(r.status, 2);
+        EXPECT_EQ(r.out, "");
+        EXPECT_EQ(r.err, "jostle check: " + c.message + "\n");
+    }
+}
+
+// ---- --jobs ----------------------------------------------------------------------------
+
+TEST_F(Check, JobsGiveTheSameResultsAndFilesAsOneJob) {
+    // Four scenarios with two screenshots each, in two folders: goldens made by one job in
+    // `one`, by four at once in `four` (OSMesa contexts on four threads).
+    const fs::path one = dir_ / "one";
+    const fs::path four = dir_ / "four";
+    fs::create_directories(one);
+    fs::create_directories(four);
+    std::vector<std::string> scenarios;
+    for (int i = 0; i < 4; ++i) {
+        const std::string body = std::string("0-") + std::to_string(4 + 3 * i) + " left\n" + std::to_string(5 + 3 * i) +
+                                 "-29 up fire\nat 15 screenshot\nat 29 screenshot\nat 30 end\n";
+        const std::string name = std::string("j") + std::to_string(i) + ".scn";
+        scenarios.push_back(scenario(name, body, one));
+        scenario(name, body, four);
+    }
+    RunResult r = check({"--update", "--jobs", "1", one.string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = check({"--update", "--jobs", "4", four.string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(lines_of(r.out).size(), 5u) << r.out;  // four "updated" lines, in scenario order, and the summary
+    EXPECT_EQ(listing(one), listing(four));
+    EXPECT_EQ(listing(one).size(), 16u);  // .scn, .trace, two PNGs each
+    for (const std::string& name : listing(one)) {
+        EXPECT_TRUE(read_text(one / name) == read_text(four / name)) << name << " differs between --jobs 1 and --jobs 4";
+    }
+
+    // Each folder checked by 1, 2 and 4 jobs: the same lines, all PASS (with more than one job
+    // in the order the scenarios finish), the summary last.
+    for (const fs::path& where : {one, four}) {
+        std::string expected;
+        for (const char* name : {"j0.scn", "j1.scn", "j2.scn", "j3.scn"}) expected += pass_line((where / name).string(), 30, 2) + "\n";
+        expected += "checked 4 scenarios: 4 passed, 0 failed\n";
+        r = check({"--jobs", "1", where.string()});
+        EXPECT_EQ(r.status, 0);
+        EXPECT_EQ(r.out, expected);
+        std::vector<std::string> sorted = lines_of(expected);
+        std::sort(sorted.begin(), sorted.end());
+        for (const char* jobs : {"2", "4"}) {
+            SCOPED_TRACE(where.filename().string() + " --jobs " + jobs);
+            r = check({"--jobs", jobs, where.string()});
+            EXPECT_EQ(r.status, 0);
+            EXPECT_EQ(r.err, "");
+            std::vector<std::string> lines = lines_of(r.out);
+            ASSERT_EQ(lines.size(), 5u) << r.out;
+            EXPECT_EQ(lines.back(), "checked 4 scenarios: 4 passed, 0 failed");
+            std::sort(lines.begin(), lines.end());
+            EXPECT_EQ(lines, sorted);
+        }
+    }
+
+    // One scenario regresses: the run says so for exactly that one.
+    const std::string changed = scenario("j2.scn", "0-29 right\nat 15 screenshot\nat 29 screenshot\nat 30 end\n", one);
+    r = check({"--jobs", "4", one.string()});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "");
+    const std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_FALSE(lines.empty());
+    EXPECT_EQ(lines.back(), "checked 4 scenarios: 3 passed, 1 failed");
+    std::vector<std::string> verdicts;
+    for (const std::string& line : lines) {
+        if (line.rfind("PASS ", 0) == 0 || line.rfind("FAIL ", 0) == 0) verdicts.push_back(line);
+    }
+    std::sort(verdicts.begin(), verdicts.end());
+    EXPECT_EQ(verdicts, (std::vector<std::string>{"FAIL " + changed + " (30 ticks, 0 expectations, 2 screenshots)",
+                                                  pass_line(scenarios[0], 30, 2), pass_line(scenarios[1], 30, 2),
+                                                  pass_line(scenarios[3], 30, 2)}));
+    // The details of the failure are the same as one job prints.
+    const RunResult serial = check({"--jobs", "1", one.string()});
+    EXPECT_EQ(serial.status, 1);
+    std::vector<std::string> serial_lines = lines_of(serial.out);
+    std::vector<std::string> parallel_lines = lines;
+    std::sort(serial_lines.begin(), serial_lines.end());
+    std::sort(parallel_lines.begin(), parallel_lines.end());
+    EXPECT_EQ(parallel_lines, serial_lines);
+}
+
+// ---- usage -----------------------------------------------------------------------------
+
+TEST_F(Check, UsageErrorsExitTwoWithTheirMessage) {
+    const std::string s = scenario("s.scn", kTurn);
+    struct Case {
+        std::vector<std::string> args;
+        std::string message;
+    };
+    const Case cases[] = {
+        {{s, "--jobs", "0"}, "--jobs: expected a whole number from 1 to 256, got '0'"},
+        {{s, "--jobs", "x"}, "--jobs: expected a whole number from 1 to 256, got 'x'"},
+        {{s, "--jobs", "257"}, "--jobs: expected a whole number from 1 to 256, got '257'"},
+        {{s, "--jobs", "-2"}, "--jobs: expected a whole number from 1 to 256, got '-2'"},
+        {{s, "--tolerance", "256"}, "--tolerance: expected a whole number from 0 to 255, got '256'"},
+        {{s, "--tolerance", "-1"}, "--tolerance: expected a whole number from 0 to 255, got '-1'"},
+        {{s, "--max-pixels", "-1"}, "--max-pixels: expected a whole number >= 0, got '-1'"},
+        {{s, "--max-pixels", "many"}, "--max-pixels: expected a whole number >= 0, got 'many'"},
+        {{s, "--fast"}, "unknown option '--fast'"},
+        {{"-u", s}, "unknown option '-u'"},
+        {{s, "--jobs"}, "--jobs needs a value"},
+        {{s, "--tolerance"}, "--tolerance needs a value"},
+        {{s, "--report"}, "--report needs a value"},
+        {{s, "--report", ""}, "--report needs a value"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.message);
+        const RunResult r = check(c.args);
+        EXPECT_EQ(r.status, 2);
+        EXPECT_EQ(r.out, "");
+        EXPECT_EQ(r.err, usage_error(c.message));
+    }
+    EXPECT_EQ(listing(dir_), std::vector<std::string>{"s.scn"});
+
+    // A path that does not exist is bad input, named.
+    const std::string missing = path("nowhere.scn");
+    const RunResult r = check({s, missing});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "jostle check: " + missing + ": no such scenario file or folder\n");
+
+    const RunResult help = test::run_jostle_binary({"check", "--help"});
+    EXPECT_EQ(help.status, 0);
+    EXPECT_EQ(help.out, check_help());
+    EXPECT_EQ(help.err, "");
+}
+
+// ---- --report --------------------------------------------------------------------------
+
+// The elements <img class="C" src="S"> of an HTML text, as (C, S).
+std::vector<std::pair<std::string, std::string>> images_in(const std::string& html) {
+    std::vector<std::pair<std::string, std::string>> out;
+    const std::string open = "<img class=\"";
+    for (std::size_t at = html.find(open); at != std::string::npos; at = html.find(open, at + 1)) {
+        const std::size_t class_start = at + open.size();
+        const std::size_t class_end = html.find('"', class_start);
+        const std::string src = " src=\"";
+        if (class_end == std::string::npos || html.compare(class_end + 1, src.size(), src) != 0) {
+            ADD_FAILURE() << "unexpected img element at " << at;
+            break;
+        }
+        const std::size_t src_start = class_end + 1 + src.size();
+        const std::size_t src_end = html.find('"', src_start);
+        out.emplace_back(html.substr(class_start, class_end - class_start), html.substr(src_start, src_end - src_start));
+    }
+    return out;
+}
+
+TEST_F(Check, ReportShowsTheFailingScenarioWithItsImages) {
+    const std::string fail = scenario("fail.scn", kDrive);
+    const std::string pass = scenario("pass.scn", kDrive);
+    bless(fail);
+    bless(pass);
+    // Now idle on tick 10, where the golden drives; the new screenshot at 25 has no golden.
+    scenario("fail.scn", kDriveLater);
+    const fs::path report = dir_ / "report";
+    const RunResult r = check({folder(), "--report", report.string()});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "");
+    EXPECT_THAT(r.out, HasSubstr("FAIL " + fail + " (30 ticks, 0 expectations, 2 screenshots)\n"
+                                 "  trace: first divergent tick 10 (expected hash "));
+    EXPECT_THAT(r.out, HasSubstr(std::string("\n") + pass_line(pass, 30, 1) + "\nchecked 2 scenarios: 1 passed, 1 failed\n"));
+
+    const std::string html = read_text(report / "report.html");
+    EXPECT_THAT(html, HasSubstr("<h1>jostle check: 1 of 2 scenarios failed</h1>"));
+    EXPECT_THAT(html, HasSubstr("<h2 class=\"fail\">" + fail + "</h2>"));
+    EXPECT_THAT(html, ::testing::Not(HasSubstr(pass)));  // only failures are shown
+    EXPECT_THAT(html, HasSubstr("<b class=\"first-divergent-tick\">10</b>"));
+    EXPECT_THAT(html, HasSubstr("<tr><td>player</td><td>x</td><td>102.5</td><td>100</td></tr>"));
+    // Tick 25 has no golden: only the actual image. Tick 29 differs: all three.
+    const auto images = images_in(html);
+    EXPECT_EQ(images, (std::vector<std::pair<std::string, std::string>>{{"actual", "fail.tick_25.actual.png"},
+                                                                        {"expected", "fail.tick_29.expected.png"},
+                                                                        {"actual", "fail.tick_29.actual.png"},
+                                                                        {"diff", "fail.tick_29.diff.png"}}));
+    for (const auto& [cls, src] : images) {
+        EXPECT_TRUE(fs::exists(report / src)) << src;
+        if (fs::exists(report / src)) {
+            const Image im = read_png((report / src).string());
+            EXPECT_EQ(im.width, 640) << src;
+            EXPECT_EQ(im.height, 480) << src;
+        }
+    }
+    EXPECT_GT(red_pixels(read_png((report / "fail.tick_29.diff.png").string())), 0);
+    EXPECT_EQ(listing(report), (std::vector<std::string>{"fail.tick_25.actual.png", "fail.tick_29.actual.png", "fail.tick_29.diff.png",
+                                                         "fail.tick_29.expected.png", "junit.xml", "report.html"}));
+
+    // junit.xml: both scenarios, a failure only for the failing one.
+    const std::string xml = read_text(report / "junit.xml");
+    EXPECT_THAT(xml, HasSubstr("<testsuite name=\"jostle.scenarios\" tests=\"2\" failures=\"1\" time=\""));
+    const std::vector<std::string> lines = lines_of(xml);
+    std::vector<std::string> testcases;
+    for (const std::string& line : lines) {
+        if (line.rfind("  <testcase ", 0) == 0) testcases.push_back(line);
+    }
+    ASSERT_EQ(testcases.size(), 2u) << xml;
+    EXPECT_THAT(testcases[0], ::testing::StartsWith("  <testcase classname=\"scenario\" name=\"fail\" file=\"" + fail + "\" time=\""));
+    EXPECT_THAT(testcases[0], ::testing::EndsWith("\">"));  // with a <failure> inside
+    EXPECT_THAT(testcases[1], ::testing::StartsWith("  <testcase classname=\"scenario\" name=\"pass\" file=\"" + pass + "\" time=\""));
+    EXPECT_THAT(testcases[1], ::testing::EndsWith("\"/>"));  // passed: empty
+    std::size_t failures = 0;
+    for (std::size_t at = xml.find("<failure "); at != std::string::npos; at = xml.find("<failure ", at + 1)) ++failures;
+    EXPECT_EQ(failures, 1u);
+    EXPECT_THAT(xml, HasSubstr("<failure message=\"regression\">FAIL " + fail + " (30 ticks"));
+}
+
+}  // namespace
+}  // namespace jostle
