@@ -55,6 +55,7 @@ std::vector<std::string> sprite_names(const std::string& assets_dir) {
 
 struct Thing {
     EntityId id;
+    std::uint64_t serial = 0;  // the entity's user_data; creation order
     std::string name;
     Kind kind = Kind::wall;
     bool alive = true;
@@ -187,6 +188,7 @@ public:
         h.u32(events_seen_);
         h.u64(things_.size());
         for (const Thing& t : things_) {
+            h.u64(t.serial);
             h.u32(t.alive ? 1u : 0u);
             h.u32(static_cast<std::uint32_t>(t.lifetime));
             h.u32(static_cast<std::uint32_t>(t.bounces));
@@ -323,14 +325,18 @@ public:
 
 private:
     std::size_t add(Thing thing, EntityDesc desc) {
-        desc.user_data = things_.size();
+        thing.serial = next_serial_++;
+        desc.user_data = thing.serial;
         thing.id = world_.create(desc);
         things_.push_back(std::move(thing));
         return things_.size() - 1;
     }
 
-    Thing* thing_of(std::uint64_t user_data) {
-        return user_data < things_.size() ? &things_[static_cast<std::size_t>(user_data)] : nullptr;
+    // The thing an entity's user_data names (things_ stays sorted by serial).
+    Thing* thing_of(std::uint64_t serial) {
+        const auto it = std::lower_bound(things_.begin(), things_.end(), serial,
+                                         [](const Thing& t, std::uint64_t s) { return t.serial < s; });
+        return it != things_.end() && it->serial == serial ? &*it : nullptr;
     }
 
     void drive_player(InputFrame input) {
@@ -469,6 +475,9 @@ private:
                 t.alive = false;
             }
         }
+        // Forget what is gone, so a long run costs no more per tick than a short one. The
+        // player (serial 0, created first) never goes.
+        std::erase_if(things_, [](const Thing& t) { return !t.alive; });
     }
 
     Level level_;
@@ -476,8 +485,9 @@ private:
     Rules rules_;
     World world_;
     float dt_;
-    std::vector<Thing> things_;  // in creation order; user_data is the index
-    std::size_t player_ = 0;
+    std::vector<Thing> things_;  // the living, in creation order; user_data is the serial
+    std::uint64_t next_serial_ = 0;
+    std::size_t player_ = 0;     // always things_[0]
     std::int64_t ticks_ = 0;
     std::int64_t score_ = 0;
     std::int64_t shots_ = 0;

@@ -180,9 +180,15 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
             return 1;
         }
         file.commit();
-        for (const ExpectationResult& r : replayed.expectations) {
+        // The replay's expectations are the recording's, in the same order (both sorted by
+        // tick); the recording knows which file and line each came from.
+        for (std::size_t i = 0; i < replayed.expectations.size(); ++i) {
+            const ExpectationResult& r = replayed.expectations[i];
             if (r.passed) continue;
-            err << "jostle record: note: " << script_source << ":" << r.expectation->line << ": expectation fails in this run at tick "
+            const bool known = i < recording.scenario.expectations.size();
+            const std::string where = known ? recording.expectation_sources[i] : out_path;
+            const int line = known ? recording.scenario.expectations[i].line : r.expectation->line;
+            err << "jostle record: note: " << where << ":" << line << ": expectation fails in this run at tick "
                 << r.expectation->tick << ": expected " << r.expectation->text << ", found " << r.actual << "\n";
         }
         out << "recorded " << recording.hashes.size() << " ticks of level " << recording.scenario.level << " to " << out_path

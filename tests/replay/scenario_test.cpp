@@ -501,7 +501,11 @@ TEST(ScenarioErrors, MalformedTicks) {
               "s.scn:7:3: expected a tick number (0 .. 16777215), got '16777216'");
     EXPECT_EQ(error_of(with_header("3up\n")), "s.scn:7:1: expected a tick number (0 .. 16777215), got '3up'");
     EXPECT_EQ(error_of(with_header("1.5 up\n")), "s.scn:7:1: expected a tick number (0 .. 16777215), got '1.5'");
-    EXPECT_EQ(error_of(with_header("at -1 end\n")), "s.scn:7:4: expected a tick number (0 .. 16777215), got '-1'");
+    // An end tick may be the cap itself (a run of exactly 2^24 ticks), one more is refused.
+    EXPECT_EQ(error_of(with_header("at -1 end\n")), "s.scn:7:4: expected a tick number (0 .. 16777216), got '-1'");
+    EXPECT_EQ(error_of(with_header("at 16777217 end\n")), "s.scn:7:4: expected a tick number (0 .. 16777216), got '16777217'");
+    EXPECT_EQ(error_of(with_header("at 16777216 screenshot\n")),
+              "s.scn:7:4: expected a tick number (0 .. 16777215), got '16777216'");
     EXPECT_EQ(error_of(with_header("3\n")), "s.scn:7:2: expected the actions held (or '-' for none) after the tick");
 }
 

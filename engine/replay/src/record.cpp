@@ -5,6 +5,7 @@
 
 #include "jostle/core/error.h"
 #include "jostle/core/interrupt.h"
+#include "jostle/replay/replay.h"
 #include "jostle/core/text.h"
 
 #ifndef JOSTLE_VERSION
@@ -113,13 +114,22 @@ Recording record(const Game& game, const RecordDesc& desc, std::span<const Scrip
             if (shot.tick < desc.keep_ticks) s.screenshots.push_back(shot);
         }
         for (const Expectation& e : desc.from->expectations) {
-            if (e.tick < desc.keep_ticks) s.expectations.push_back(e);
+            if (e.tick < desc.keep_ticks) {
+                validate_expectation(e, *sim, desc.from->source);
+                s.expectations.push_back(e);
+                out.expectation_sources.push_back(desc.from->source);
+            }
         }
     }
     for (const ScriptStep& step : script) {
         const std::int64_t last = static_cast<std::int64_t>(s.inputs.size()) - 1;
         switch (step.kind) {
             case ScriptStep::Kind::hold:
+                if (step.ticks > kMaxScenarioTicks - static_cast<std::int64_t>(s.inputs.size())) {
+                    throw InputError(SourceLocation{script_source, step.line, 1},
+                                     "the recording would be longer than a scenario can be (" +
+                                         std::to_string(kMaxScenarioTicks) + " ticks)");
+                }
                 for (std::int64_t i = 0; i < step.ticks; ++i) play(step.input);
                 break;
             case ScriptStep::Kind::screenshot:
@@ -134,7 +144,9 @@ Recording record(const Game& game, const RecordDesc& desc, std::span<const Scrip
                 } else {
                     Expectation e = step.expectation;
                     e.tick = last;
+                    validate_expectation(e, *sim, script_source);
                     s.expectations.push_back(std::move(e));
+                    out.expectation_sources.push_back(script_source);
                 }
                 break;
         }

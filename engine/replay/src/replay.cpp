@@ -24,30 +24,6 @@ std::string join(const std::vector<std::string>& names) {
     return out.empty() ? "none" : out;
 }
 
-// Expectations must name kinds, variables and events the game has: a typo is bad input, not a
-// failing check.
-void validate_expectations(const Scenario& scenario, const Simulation& sim) {
-    for (const Expectation& e : scenario.expectations) {
-        const char* what = nullptr;
-        std::vector<std::string> known;
-        if (e.kind == Expectation::Kind::count) {
-            known = sim.kinds();
-            what = "entity kind";
-        } else if (e.kind == Expectation::Kind::variable) {
-            known = sim.variables();
-            what = "game variable";
-        } else if (e.kind == Expectation::Kind::event) {
-            known = sim.events();
-            what = "event";
-        } else {
-            continue;
-        }
-        if (std::find(known.begin(), known.end(), e.name) == known.end()) {
-            throw InputError(SourceLocation{scenario.source, e.line, 0},
-                             std::string("unknown ") + what + " '" + e.name + "' (expected one of: " + join(known) + ")");
-        }
-    }
-}
 
 ExpectationResult check(const Expectation& e, const Simulation& sim) {
     ExpectationResult r;
@@ -106,6 +82,27 @@ std::vector<std::int64_t> sheet_ticks(const FrameSelection& frames, std::int64_t
 
 }  // namespace
 
+void validate_expectation(const Expectation& e, const Simulation& sim, const std::string& source) {
+    const char* what = nullptr;
+    std::vector<std::string> known;
+    if (e.kind == Expectation::Kind::count) {
+        known = sim.kinds();
+        what = "entity kind";
+    } else if (e.kind == Expectation::Kind::variable) {
+        known = sim.variables();
+        what = "game variable";
+    } else if (e.kind == Expectation::Kind::event) {
+        known = sim.events();
+        what = "event";
+    } else {
+        return;
+    }
+    if (std::find(known.begin(), known.end(), e.name) == known.end()) {
+        throw InputError(SourceLocation{source, e.line, 0},
+                         std::string("unknown ") + what + " '" + e.name + "' (expected one of: " + join(known) + ")");
+    }
+}
+
 bool ReplayResult::expectations_passed() const {
     return std::all_of(expectations.begin(), expectations.end(), [](const ExpectationResult& r) { return r.passed; });
 }
@@ -113,7 +110,7 @@ bool ReplayResult::expectations_passed() const {
 ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOptions& options) {
     const auto started = std::chrono::steady_clock::now();
     std::unique_ptr<Simulation> sim = game.start(scenario.level, scenario.seed, scenario.tick_rate);
-    validate_expectations(scenario, *sim);
+    for (const Expectation& e : scenario.expectations) validate_expectation(e, *sim, scenario.source);
 
     ReplayResult result;
     result.ticks = scenario.ticks();

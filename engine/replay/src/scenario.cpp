@@ -33,12 +33,14 @@ public:
 
     void set_line(int line) { line_ = line; }
 
-    std::int64_t tick(const Word& word) const {
+    // A tick the run plays (0 .. kMaxScenarioTicks - 1), or with `end` the tick it ends before
+    // (up to kMaxScenarioTicks).
+    std::int64_t tick(const Word& word, bool end_tick = false) const {
+        const std::int64_t most = end_tick ? kMaxScenarioTicks : kMaxScenarioTicks - 1;
         std::int64_t value = 0;
         const auto [end, ec] = std::from_chars(word.text.data(), word.text.data() + word.text.size(), value);
-        if (ec != std::errc() || end != word.text.data() + word.text.size() || value < 0 || value >= kMaxScenarioTicks) {
-            fail(word, "expected a tick number (0 .. " + std::to_string(kMaxScenarioTicks - 1) + "), got '" +
-                           std::string(word.text) + "'");
+        if (ec != std::errc() || end != word.text.data() + word.text.size() || value < 0 || value > most) {
+            fail(word, "expected a tick number (0 .. " + std::to_string(most) + "), got '" + std::string(word.text) + "'");
         }
         return value;
     }
@@ -292,8 +294,8 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
         // Directives.
         if (head == "at") {
             if (words.size() < 3) p.expect_count(words, 3, "at TICK screenshot|expect ...|end");
-            const std::int64_t tick = p.tick(words[1]);
             const std::string_view what = words[2].text;
+            const std::int64_t tick = p.tick(words[1], what == "end");
             if (what == "screenshot") {
                 p.expect_count(words, 3, "at TICK screenshot");
                 s.screenshots.push_back(Screenshot{tick, line_number});

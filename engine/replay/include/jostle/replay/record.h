@@ -49,10 +49,15 @@ struct Recording {
     Scenario scenario;                  // ready for format_scenario
     std::vector<std::uint64_t> hashes;  // the live run's state hash after each tick
     std::string source;                 // for messages: where a step came from
+    // Where each of scenario.expectations was written (the --from file or the script), for
+    // messages with the right file and line.
+    std::vector<std::string> expectation_sources;
 };
 
 // Plays the kept ticks and the script live and returns the scenario and the run's hashes.
-// A script step that makes no tick (screenshot, expect) before any tick is an InputError.
+// InputError (at the step's line) for a step that makes no tick (screenshot, expect) before
+// any tick, an expectation naming what the game lacks, and a script longer than a scenario
+// can be (kMaxScenarioTicks).
 Recording record(const Game& game, const RecordDesc& desc, std::span<const ScriptStep> script,
                  const std::string& script_source);
 

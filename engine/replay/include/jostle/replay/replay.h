@@ -64,6 +64,10 @@ struct ReplayResult {
 // a kind, variable or event the game does not have, or an output cannot be written.
 ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOptions& options = {});
 
+// An expectation must name kinds, variables and events the game has: a typo is bad input
+// (InputError at source:line), not a failing check. replay() checks every expectation so.
+void validate_expectation(const Expectation& e, const Simulation& sim, const std::string& source);
+
 // The trace file: the hash of every tick and the dumps, readable and diffable:
 //   jostle-trace 1
 //   ticks 120
