@@ -32,7 +32,7 @@ constexpr const char* kEventNames[] = {"fire",       "bullet_hit", "rock_hit",  
 enum GameEvent : int {
     kEventFire, kEventBulletHit, kEventRockHit, kEventPickup, kEventCannonFire, kEventPlayerHit, kEventRicochet, kEventBlobTouch
 };
-constexpr const char* kVariableNames[] = {"score", "shots", "balls", "fastest"};
+constexpr const char* kVariableNames[] = {"score", "shots", "balls", "fastest", "touches"};
 
 std::string read_file(const std::string& path, const char* what = "the level file") {
     std::ifstream in(path, std::ios::binary);
@@ -184,6 +184,7 @@ public:
         h.u64(static_cast<std::uint64_t>(score_));
         h.u64(static_cast<std::uint64_t>(shots_));
         h.u64(static_cast<std::uint64_t>(balls_));
+        h.u64(static_cast<std::uint64_t>(touches_));
         h.u32(static_cast<std::uint32_t>(cooldown_));
         h.u32(events_seen_);
         h.u64(things_.size());
@@ -218,6 +219,7 @@ public:
         if (name == "shots") return static_cast<double>(shots_);
         if (name == "balls") return static_cast<double>(balls_);
         if (name == "fastest") return static_cast<double>(fastest());
+        if (name == "touches") return static_cast<double>(touches_);
         return std::nullopt;
     }
 
@@ -238,6 +240,7 @@ public:
                                  {{"score", std::to_string(score_)},
                                   {"shots", std::to_string(shots_)},
                                   {"balls", std::to_string(balls_)},
+                                  {"touches", std::to_string(touches_)},
                                   {"cooldown", std::to_string(cooldown_)}}});
         for (const Thing& t : things_) {
             if (!t.alive || t.kind == Kind::wall || t.kind == Kind::prop) continue;  // they never move
@@ -456,6 +459,7 @@ private:
                     const auto pair = [&](Kind x, Kind y) { return (a->kind == x && b->kind == y) || (a->kind == y && b->kind == x); };
                     if (pair(Kind::ball, Kind::player)) events_seen_ |= 1u << kEventPlayerHit;
                     if (pair(Kind::blob, Kind::player)) events_seen_ |= 1u << kEventBlobTouch;
+                    if (a->kind == Kind::player || b->kind == Kind::player) ++touches_;
                     break;
                 }
                 default: break;
@@ -492,6 +496,7 @@ private:
     std::int64_t score_ = 0;
     std::int64_t shots_ = 0;
     std::int64_t balls_ = 0;
+    std::int64_t touches_ = 0;  // contacts the ship began with anything solid
     int cooldown_ = 0;
     std::uint32_t events_seen_ = 0;
     // The sprites' ids in the renderer that drew last (Renderer::serial says which).

@@ -6,7 +6,8 @@
 // Bullets ricochet off walls (twice); anything else ends them. Blob creatures patrol.
 // Kinds: player, wall, crate, rock, pickup, cannon, bullet, ball, prop, blob.
 // Variables: score (10 per pickup, 1 per bullet hit on a rock), shots, balls, fastest (the
-// speed of the fastest crate or rock, px/s: a settled crowd has it near 0).
+// speed of the fastest crate or rock, px/s: a settled crowd has it near 0), touches (contacts
+// the ship has begun with anything solid: a near miss leaves it at 0).
 // Events: fire, bullet_hit, rock_hit, pickup, cannon_fire, player_hit (a ball hit the ship),
 // ricochet, blob_touch (the ship touched a blob).
 // Pictures come from assets/sprites (tools/make-sprites); props and blobs collide by them.

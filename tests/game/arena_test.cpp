@@ -110,7 +110,7 @@ TEST_F(Arena, WhatExpectationsCanName) {
     const auto sim = start("open");
     EXPECT_EQ(sim->kinds(), (std::vector<std::string>{"player", "wall", "crate", "rock", "pickup", "cannon", "bullet", "ball",
                                                        "prop", "blob"}));
-    EXPECT_EQ(sim->variables(), (std::vector<std::string>{"score", "shots", "balls", "fastest"}));
+    EXPECT_EQ(sim->variables(), (std::vector<std::string>{"score", "shots", "balls", "fastest", "touches"}));
     EXPECT_EQ(sim->events(), (std::vector<std::string>{"fire", "bullet_hit", "rock_hit", "pickup", "cannon_fire", "player_hit",
                                                         "ricochet", "blob_touch"}));
     EXPECT_EQ(sim->ticks_done(), 0);

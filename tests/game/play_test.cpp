@@ -156,7 +156,7 @@ TEST_F(Play, BadInputExitsTwoNamingFileAndLine) {
     r = play({lives});
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(r.out, "");
-    EXPECT_EQ(r.err, "jostle play: " + lives + ":8: unknown game variable 'lives' (expected one of: score, shots, balls, fastest)\n");
+    EXPECT_EQ(r.err, "jostle play: " + lives + ":8: unknown game variable 'lives' (expected one of: score, shots, balls, fastest, touches)\n");
 
     // The levels come from --assets: a level unknown there, and a broken level file.
     const fs::path assets = dir_ / "assets";

@@ -266,7 +266,11 @@ TEST_F(Record, UsageErrorsExitTwoWithTheirMessage) {
     const std::string s = "--script";
     expect_rejected({"--level", "arena", s, script}, usage_error("expected -o SCENARIO (the file to write)"));
     expect_rejected({"-o", kOut, s, script}, usage_error("expected --level LEVEL (or --from SCENARIO --at TICK)"));
-    expect_rejected({"--level", "moon", "-o", kOut, s, script}, usage_error("--level: unknown level 'moon' (expected one of: arena)"));
+    std::string levels;  // every level in the assets, in name order
+    for (const std::string& name : game_.vocabulary().levels) levels += (levels.empty() ? "" : ", ") + name;
+    ASSERT_THAT(levels, ::testing::StartsWith("arena, "));
+    expect_rejected({"--level", "moon", "-o", kOut, s, script},
+                    usage_error("--level: unknown level 'moon' (expected one of: " + levels + ")"));
     expect_rejected({"--level", "arena", "-o", kOut, s, script, "--fast"}, usage_error("unknown option '--fast'"));
     expect_rejected({"--level", "arena", "-o", kOut, s, script, "extra"}, usage_error("unexpected argument 'extra'"));
     expect_rejected({"--level", "arena", "-o", "", s, script}, usage_error("-o needs a value"));
@@ -587,7 +591,7 @@ TEST_F(Record, AnExpectationNamingWhatTheGameLacksIsBadInput) {
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(r.out, "");
     // The script and its line, checked as the script is played (not the unwritten output file).
-    EXPECT_EQ(r.err, "jostle record: " + script + ":2: unknown game variable 'lives' (expected one of: score, shots, balls, fastest)\n");
+    EXPECT_EQ(r.err, "jostle record: " + script + ":2: unknown game variable 'lives' (expected one of: score, shots, balls, fastest, touches)\n");
     EXPECT_FALSE(fs::exists(out));
     EXPECT_EQ(listing(), (std::vector<std::string>{"lives.script"}));  // no temporary file left either
 }
