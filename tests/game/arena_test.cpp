@@ -4,7 +4,6 @@
 #include "arena.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +13,7 @@
 
 #include "jostle/core/error.h"
 #include "jostle/replay/replay.h"
+#include "test_support.h"
 
 namespace jostle::game {
 namespace {
@@ -40,24 +40,19 @@ constexpr const char* kOpenRoom =
 class Arena : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::path(::testing::TempDir()) /
-               ("arena_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-                std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_ / "levels");
+        fs::create_directories(dir_.path() / "levels");
         write_level("open", kOpenRoom);
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     void write_level(const std::string& name, const std::string& text) {
-        std::ofstream((dir_ / "levels" / (name + ".level")).string(), std::ios::binary) << text;
+        std::ofstream((dir_.path() / "levels" / (name + ".level")).string(), std::ios::binary) << text;
     }
-    std::string assets() const { return dir_.string(); }
+    std::string assets() const { return dir_.path().string(); }
     std::unique_ptr<Simulation> start(const std::string& level, Rules rules = {}) const {
         return ArenaGame(assets(), rules).start(level, 1, 60);
     }
 
-    fs::path dir_;
+    const test::TempFolder dir_{"arena"};
 };
 
 // A field of an entity's dump ("" when the entity or field is missing).
@@ -132,9 +127,10 @@ TEST_F(Arena, WhatExpectationsCanName) {
     const std::vector<EntityDump> dump = sim->dump();
     ASSERT_EQ(dump.size(), 2u);
     EXPECT_EQ(dump[0].name, "game");
-    ASSERT_EQ(dump[0].fields.size(), 4u);
+    ASSERT_EQ(dump[0].fields.size(), 5u);
     EXPECT_EQ(dump[0].fields[0].name, "score");
-    EXPECT_EQ(dump[0].fields[3].name, "cooldown");
+    EXPECT_EQ(dump[0].fields[3].name, "touches");
+    EXPECT_EQ(dump[0].fields[4].name, "cooldown");
     EXPECT_EQ(dump[1].name, "player");
     EXPECT_EQ(field(*sim, "player", "kind"), "player");
     EXPECT_EQ(field(*sim, "player", "x"), "100");
@@ -410,14 +406,14 @@ TEST_F(Arena, TheStateHashCoversTheScore) {
 TEST_F(Arena, BadOrMissingLevelFilesAreInputErrors) {
     write_level("bad", "jostle-level 1\nsize 0 480\nplayer 1 1\n");
     const ArenaGame game(assets());
-    const std::string bad = (dir_ / "levels" / "bad.level").string();
+    const std::string bad = (dir_.path() / "levels" / "bad.level").string();
     try {
         game.start("bad", 1, 60);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()), bad + ":2:6: expected a positive width, got '0'");
     }
-    const std::string missing = (dir_ / "levels" / "missing.level").string();
+    const std::string missing = (dir_.path() / "levels" / "missing.level").string();
     try {
         game.start("missing", 1, 60);
         ADD_FAILURE() << "no error";
@@ -431,7 +427,7 @@ TEST_F(Arena, PropsAndBlobsNeedTheirSprites) {
     write_level("treed", std::string(kOpenRoom) + "prop t1 tree 200 150\n");
     write_level("blobbed", std::string(kOpenRoom) + "blob b1 200 150 300 150 30\n");
     const ArenaGame game(assets());
-    const std::string level = (dir_ / "levels" / "treed.level").string();
+    const std::string level = (dir_.path() / "levels" / "treed.level").string();
     try {
         game.start("treed", 1, 60);
         ADD_FAILURE() << "no error";
@@ -441,13 +437,13 @@ TEST_F(Arena, PropsAndBlobsNeedTheirSprites) {
     EXPECT_THROW(game.start("blobbed", 1, 60), InputError);
     // With the sprites they start, and a sprite changes the level's hash.
     const std::string before = game.level_hash("treed");
-    fs::copy(fs::path(JOSTLE_ASSETS_DIR) / "sprites", dir_ / "sprites");
+    fs::copy(fs::path(JOSTLE_ASSETS_DIR) / "sprites", dir_.path() / "sprites");
     EXPECT_NE(game.level_hash("treed"), before);
     EXPECT_NO_THROW(game.start("treed", 1, 60));
 }
 
 TEST_F(Arena, ABlobWalksToTheEndOfItsPatrolAndBack) {
-    fs::copy(fs::path(JOSTLE_ASSETS_DIR) / "sprites", dir_ / "sprites");
+    fs::copy(fs::path(JOSTLE_ASSETS_DIR) / "sprites", dir_.path() / "sprites");
     // 60 px at 30 px/s: 120 ticks out, 120 back.
     write_level("blobbed", std::string(kOpenRoom) + "blob b1 200 250 260 250 30\n");
     const auto sim = start("blobbed");

@@ -8,10 +8,7 @@
 // sharding (TEST_ / GTEST_ variables, the status file, malformed values); --jobs gives the
 // same results and files as one job (OSMesa rendering on several threads); usage errors;
 // --report (report.html with the first divergent tick and its images, junit.xml).
-#include <unistd.h>
-
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -32,6 +29,7 @@
 #include "jostle/replay/check.h"
 #include "jostle/replay/replay.h"
 #include "game/run_jostle.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
@@ -39,16 +37,11 @@ namespace {
 namespace fs = std::filesystem;
 
 using ::testing::HasSubstr;
+using test::EnvGuard;
+using test::read_text;
 using test::RunResult;
 
 const std::string kAssets = JOSTLE_ASSETS_DIR;
-
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 std::vector<std::string> lines_of(const std::string& text) {
     std::vector<std::string> lines;
@@ -69,38 +62,6 @@ std::int64_t red_pixels(const Image& image) {
     }
     return n;
 }
-
-// Sets or unsets environment variables for its lifetime; the child jostle inherits `environ`.
-class EnvGuard {
-public:
-    EnvGuard() = default;
-    EnvGuard(const EnvGuard&) = delete;
-    EnvGuard& operator=(const EnvGuard&) = delete;
-    ~EnvGuard() {
-        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
-            if (it->second) ::setenv(it->first.c_str(), it->second->c_str(), 1);
-            else ::unsetenv(it->first.c_str());
-        }
-    }
-    void set(const std::string& name, const std::string& value) {
-        save(name);
-        ::setenv(name.c_str(), value.c_str(), 1);
-    }
-    void unset(const std::string& name) {
-        save(name);
-        ::unsetenv(name.c_str());
-    }
-
-private:
-    void save(const std::string& name) {
-        for (const auto& s : saved_) {
-            if (s.first == name) return;
-        }
-        const char* v = std::getenv(name.c_str());
-        saved_.emplace_back(name, v != nullptr ? std::optional<std::string>(v) : std::nullopt);
-    }
-    std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
-};
 
 constexpr const char* kShardVariables[] = {"TEST_TOTAL_SHARDS",  "TEST_SHARD_INDEX",  "TEST_SHARD_STATUS_FILE",
                                            "GTEST_TOTAL_SHARDS", "GTEST_SHARD_INDEX", "GTEST_SHARD_STATUS_FILE"};
@@ -129,25 +90,19 @@ constexpr const char* kTurn =
 class Check : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::path(::testing::TempDir()) /
-               (std::string("check_") + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-                std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
         level_hash_ = game::ArenaGame(kAssets).level_hash("arena");
         // The child must not inherit a sharding of this test binary, test hooks or other assets.
         for (const char* name : kShardVariables) env_.unset(name);
         env_.unset("JOSTLE_ASSETS");
         env_.unset("JOSTLE_TEST_INTERRUPT");
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::string folder() const { return dir_.string(); }
+    std::string path(const std::string& name) const { return dir_.file(name); }
+    std::string folder() const { return dir_.path().string(); }
 
     // The arena scenario header (the current level hash) and `body`, as NAME in `where`.
     std::string scenario(const std::string& name, const std::string& body, const fs::path& where = {}) {
-        const fs::path file = (where.empty() ? dir_ : where) / name;
+        const fs::path file = (where.empty() ? dir_.path() : where) / name;
         std::ofstream(file, std::ios::binary) << "jostle-scenario 1\nengine 0.1.0\nlevel arena\nseed 1\ntick-rate 60\nlevel-hash "
                                               << level_hash_ << "\n"
                                               << body;
@@ -170,12 +125,7 @@ protected:
     }
 
     // The file names in a folder, sorted.
-    std::vector<std::string> listing(const fs::path& where) const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(where)) names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
+    std::vector<std::string> listing(const fs::path& where) const { return test::file_names(where); }
 
     // Every file's contents and modification time, by name.
     std::map<std::string, std::pair<std::string, fs::file_time_type>> snapshot(const fs::path& where) const {
@@ -191,7 +141,7 @@ protected:
                " screenshots)";
     }
 
-    fs::path dir_;
+    const test::TempFolder dir_{"check"};
     std::string level_hash_;
     EnvGuard env_;
     const game::ArenaGame standard_{kAssets};
@@ -271,7 +221,7 @@ TEST_F(Check, ARuleChangeIsCaughtAtTheFirstTickItCanMatter) {
 
     // The report: the golden as expected.png, this run as actual.png, and the diff with
     // exactly the differing pixels in red.
-    const fs::path report = dir_ / "report";
+    const fs::path report = dir_.path() / "report";
     write_report(report.string(), {c});
     EXPECT_TRUE(fs::exists(report / "report.html"));
     EXPECT_TRUE(fs::exists(report / "junit.xml"));
@@ -287,7 +237,7 @@ TEST_F(Check, ARuleChangeIsCaughtAtTheFirstTickItCanMatter) {
     EXPECT_EQ(red_pixels(diff), image.compare.differing_pixels);
 
     // The goldens are untouched by a failing check.
-    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"drive.scn", "drive.tick_29.png", "drive.trace", "report"}));
+    EXPECT_EQ(listing(dir_.path()), (std::vector<std::string>{"drive.scn", "drive.tick_29.png", "drive.trace", "report"}));
 }
 
 TEST_F(Check, ARuleTheScenarioNeverReachesChangesNothing) {
@@ -325,7 +275,7 @@ TEST_F(Check, AMissingTraceFailsAndAPlainCheckCreatesNothing) {
                      "  trace: no golden " + path("drive.trace") + " (run 'jostle check --update' to create it)\n"
                      "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
                      "checked 1 scenarios: 0 passed, 1 failed\n");
-    EXPECT_EQ(listing(dir_), std::vector<std::string>{"drive.scn"});
+    EXPECT_EQ(listing(dir_.path()), std::vector<std::string>{"drive.scn"});
 }
 
 TEST_F(Check, AMissingScreenshotGoldenFails) {
@@ -338,7 +288,7 @@ TEST_F(Check, AMissingScreenshotGoldenFails) {
     EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
                      "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
                      "checked 1 scenarios: 0 passed, 1 failed\n");
-    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"drive.scn", "drive.trace"}));
+    EXPECT_EQ(listing(dir_.path()), (std::vector<std::string>{"drive.scn", "drive.trace"}));
 }
 
 TEST_F(Check, AStaleScreenshotGoldenFails) {
@@ -365,7 +315,7 @@ TEST_F(Check, UpdateCreatesChangesAndRemovesGoldensSayingHow) {
     EXPECT_EQ(r.out, "updated " + a + ": trace created, a.tick_29.png created\n"
                      "updated " + b + ": trace created\n"
                      "checked 2 scenarios: 2 updated\n");
-    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"a.scn", "a.tick_29.png", "a.trace", "b.scn", "b.trace"}));
+    EXPECT_EQ(listing(dir_.path()), (std::vector<std::string>{"a.scn", "a.tick_29.png", "a.trace", "b.scn", "b.trace"}));
 
     r = check({folder()});
     EXPECT_EQ(r.status, 0) << r.out;
@@ -382,19 +332,19 @@ TEST_F(Check, UpdateCreatesChangesAndRemovesGoldensSayingHow) {
     EXPECT_EQ(r.out, pass_line(b, 5, 0) + "\n"
                      "updated " + a + ": trace changed from tick 10, a.tick_25.png created, a.tick_29.png changed, a.tick_3.png removed\n"
                      "checked 2 scenarios: 1 updated\n");
-    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"a.scn", "a.tick_25.png", "a.tick_29.png", "a.trace", "b.scn", "b.trace"}));
+    EXPECT_EQ(listing(dir_.path()), (std::vector<std::string>{"a.scn", "a.tick_25.png", "a.tick_29.png", "a.trace", "b.scn", "b.trace"}));
 
     r = check({folder()});
     EXPECT_EQ(r.status, 0) << r.out;
     EXPECT_EQ(r.out, pass_line(a, 30, 2) + "\n" + pass_line(b, 5, 0) + "\nchecked 2 scenarios: 2 passed, 0 failed\n");
 
     // Nothing left to change: no file is touched.
-    const auto before = snapshot(dir_);
+    const auto before = snapshot(dir_.path());
     r = check({"--update", folder()});
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, pass_line(a, 30, 2) + "\n" + pass_line(b, 5, 0) + "\nchecked 2 scenarios: 0 updated\n");
-    EXPECT_TRUE(snapshot(dir_) == before);
+    EXPECT_TRUE(snapshot(dir_.path()) == before);
 }
 
 TEST_F(Check, UpdateWithBadInputWritesNothing) {
@@ -402,15 +352,15 @@ TEST_F(Check, UpdateWithBadInputWritesNothing) {
     const std::string good = scenario("good.scn", kDrive);  // no goldens yet
     fs::path stale = path("good.tick_3.png");
     std::ofstream(stale, std::ios::binary) << "not looked at";
-    const auto before = snapshot(dir_);
+    const auto before = snapshot(dir_.path());
     const RunResult r = check({"--update", folder()});
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(r.out, "ERROR " + bad + ": " + bad +
                          ":8:3: unknown action 'jump' (expected one of: left, right, up, down, fire, or '-' for none)\n"
                          "checked 2 scenarios: 0 passed, 1 failed, 1 with bad input\n");
     EXPECT_EQ(r.err, "jostle check: nothing updated: fix the bad input first\n");
-    EXPECT_TRUE(snapshot(dir_) == before);
-    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"bad.scn", "good.scn", "good.tick_3.png"}));
+    EXPECT_TRUE(snapshot(dir_.path()) == before);
+    EXPECT_EQ(listing(dir_.path()), (std::vector<std::string>{"bad.scn", "good.scn", "good.tick_3.png"}));
 }
 
 // An update re-blesses traces and screenshots, but an expectation is the scenario's own claim:
@@ -552,8 +502,8 @@ TEST_F(Check, MalformedShardVariablesExitTwo) {
 TEST_F(Check, JobsGiveTheSameResultsAndFilesAsOneJob) {
     // Four scenarios with two screenshots each, in two folders: goldens made by one job in
     // `one`, by four at once in `four` (OSMesa contexts on four threads).
-    const fs::path one = dir_ / "one";
-    const fs::path four = dir_ / "four";
+    const fs::path one = dir_.path() / "one";
+    const fs::path four = dir_.path() / "four";
     fs::create_directories(one);
     fs::create_directories(four);
     std::vector<std::string> scenarios;
@@ -656,7 +606,7 @@ TEST_F(Check, UsageErrorsExitTwoWithTheirMessage) {
         EXPECT_EQ(r.out, "");
         EXPECT_EQ(r.err, usage_error(c.message));
     }
-    EXPECT_EQ(listing(dir_), std::vector<std::string>{"s.scn"});
+    EXPECT_EQ(listing(dir_.path()), std::vector<std::string>{"s.scn"});
 
     // A path that does not exist is bad input, named.
     const std::string missing = path("nowhere.scn");
@@ -699,7 +649,7 @@ TEST_F(Check, ReportShowsTheFailingScenarioWithItsImages) {
     bless(pass);
     // Now idle on tick 10, where the golden drives; the new screenshot at 25 has no golden.
     scenario("fail.scn", kDriveLater);
-    const fs::path report = dir_ / "report";
+    const fs::path report = dir_.path() / "report";
     const RunResult r = check({folder(), "--report", report.string()});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");

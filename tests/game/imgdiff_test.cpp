@@ -7,6 +7,7 @@
 
 #include "imgdiff.h"
 #include "jostle/render/png_io.h"
+#include "test_support.h"
 
 using namespace jostle;
 
@@ -28,10 +29,6 @@ Outcome run(std::vector<std::string> args) {
 class Imgdiff : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = std::filesystem::path(::testing::TempDir()) /
-               ("imgdiff_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        std::filesystem::remove_all(dir_);
-        std::filesystem::create_directories(dir_);
         Image base{16, 8, std::vector<std::uint8_t>(16 * 8 * 4)};
         for (std::size_t i = 0; i < base.rgba.size(); i += 4) {
             base.rgba[i] = 40;
@@ -49,10 +46,9 @@ protected:
         Image wide{17, 8, std::vector<std::uint8_t>(17 * 8 * 4, 255)};
         write_png_atomic(path("wide.png"), wide);
     }
-    void TearDown() override { std::filesystem::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string path(const std::string& name) const { return dir_.file(name); }
 
-    std::filesystem::path dir_;
+    const test::TempFolder dir_{"imgdiff"};
 };
 
 }  // namespace

@@ -5,11 +5,9 @@
 // command's JOSTLE_TEST_INTERRUPT hook (a signal after the first scenario is checked, or after
 // the first new golden is staged); the rest send SIGINT at spread-out moments.
 #include <csignal>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,22 +18,19 @@
 #include "jostle/core/interrupt.h"
 #include "jostle/render/png_io.h"
 #include "jostle/replay/check.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
 
 namespace fs = std::filesystem;
 
+using test::EnvGuard;
+using test::read_text;
+
 const std::string kAssets = JOSTLE_ASSETS_DIR;
 const std::string kInterrupted =
     "jostle: interrupted by SIGINT: stopped; files it finished are complete, unfinished ones were removed\n";
-
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 // Every file in a folder (not recursive) with its contents.
 std::map<std::string, std::string> snapshot(const fs::path& folder) {
@@ -66,31 +61,14 @@ std::vector<std::string> temp_files(const fs::path& folder) {
     return found;
 }
 
-// Sets an environment variable for the scope (the child inherits the environment).
-class ScopedEnv {
-public:
-    ScopedEnv(const char* name, const char* value) : name_(name) { setenv(name, value, 1); }
-    ~ScopedEnv() { unsetenv(name_); }
-    ScopedEnv(const ScopedEnv&) = delete;
-    ScopedEnv& operator=(const ScopedEnv&) = delete;
-
-private:
-    const char* name_;
-};
-
 class Interrupt : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::path(::testing::TempDir()) /
-               ("interrupt_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-                std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_ / "scenarios");
+        fs::create_directories(dir_.path() / "scenarios");
         level_hash_ = game::ArenaGame(kAssets).level_hash("arena");
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    fs::path scenarios() const { return dir_ / "scenarios"; }
+    fs::path scenarios() const { return dir_.path() / "scenarios"; }
 
     // An arena scenario: the ship turns, then drives, with a screenshot at `shot`.
     void scenario(const std::string& name, int turn_ticks, int drive_ticks, int shot) {
@@ -119,31 +97,31 @@ protected:
         return test::run_jostle_binary(args, "/dev/null", "", sigint_after_ms);
     }
 
-    fs::path dir_;
+    const test::TempFolder dir_{"interrupt"};
     std::string level_hash_;
 };
 
 TEST_F(Interrupt, UpdateInterruptedAfterTheFirstGoldenIsStagedChangesNothing) {
     suite_needing_update();
     const auto before = snapshot(scenarios());
-    const ScopedEnv hook("JOSTLE_TEST_INTERRUPT", "after-staged");
+    const EnvGuard hook("JOSTLE_TEST_INTERRUPT", "after-staged");
     const test::RunResult r = check({"--update"});
     EXPECT_EQ(r.status, 130);
     EXPECT_EQ(r.err, kInterrupted);
     EXPECT_TRUE(same_files(snapshot(scenarios()), before));
-    EXPECT_EQ(temp_files(dir_), std::vector<std::string>{});
+    EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{});
 }
 
 TEST_F(Interrupt, UpdateInterruptedBetweenScenariosChangesNothing) {
     suite_needing_update();
     const auto before = snapshot(scenarios());
-    const ScopedEnv hook("JOSTLE_TEST_INTERRUPT", "after-check");
+    const EnvGuard hook("JOSTLE_TEST_INTERRUPT", "after-check");
     for (const char* jobs : {"1", "2"}) {
         const test::RunResult r = check({"--update", "--jobs", jobs});
         EXPECT_EQ(r.status, 130) << "--jobs " << jobs;
         EXPECT_EQ(r.err, kInterrupted);
         EXPECT_TRUE(same_files(snapshot(scenarios()), before));
-        EXPECT_EQ(temp_files(dir_), std::vector<std::string>{});
+        EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{});
     }
 }
 
@@ -151,7 +129,7 @@ TEST_F(Interrupt, PlainCheckInterruptedSaysSo) {
     scenario("a", 10, 40, 30);
     scenario("b", 10, 40, 30);
     ASSERT_EQ(check({"--update"}).status, 0);
-    const ScopedEnv hook("JOSTLE_TEST_INTERRUPT", "after-check");
+    const EnvGuard hook("JOSTLE_TEST_INTERRUPT", "after-check");
     const test::RunResult r = check({});
     EXPECT_EQ(r.status, 130);
     EXPECT_EQ(r.err, kInterrupted);
@@ -163,7 +141,7 @@ TEST_F(Interrupt, PlainCheckInterruptedSaysSo) {
 TEST_F(Interrupt, UpdateInterruptedAnywhereIsAllOrNothing) {
     suite_needing_update();
     const auto before = snapshot(scenarios());
-    const fs::path saved = dir_ / "saved";
+    const fs::path saved = dir_.path() / "saved";
     fs::copy(scenarios(), saved);
     ASSERT_EQ(check({"--update"}).status, 0);
     const auto after = snapshot(scenarios());
@@ -176,7 +154,7 @@ TEST_F(Interrupt, UpdateInterruptedAnywhereIsAllOrNothing) {
         const test::RunResult r = check({"--update"}, delay_ms);
         const auto now = snapshot(scenarios());
         EXPECT_TRUE(now == before || now == after) << "half-updated goldens after SIGINT at " << delay_ms << " ms";
-        EXPECT_EQ(temp_files(dir_), std::vector<std::string>{}) << delay_ms << " ms";
+        EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{}) << delay_ms << " ms";
         if (r.status == 130) {
             ++interrupted;
             EXPECT_EQ(r.err, kInterrupted);
@@ -193,15 +171,15 @@ TEST_F(Interrupt, UpdateInterruptedAnywhereIsAllOrNothing) {
 }
 
 TEST_F(Interrupt, PlayInterruptedLeavesOnlyWholeFrames) {
-    std::ofstream(dir_ / "long.scn", std::ios::binary)
+    std::ofstream(dir_.path() / "long.scn", std::ios::binary)
         << "jostle-scenario 1\nengine 0.1.0\nlevel arena\nseed 1\ntick-rate 60\nlevel-hash " << level_hash_ << "\n\n"
         << "0-2999 up\n3000-5999 left up\n";
     int interrupted = 0;
     for (int delay_ms : {0, 50, 150, 300, 600}) {
-        const fs::path out = dir_ / ("frames_" + std::to_string(delay_ms));
-        const fs::path anim = dir_ / ("run_" + std::to_string(delay_ms) + ".png");
+        const fs::path out = dir_.path() / ("frames_" + std::to_string(delay_ms));
+        const fs::path anim = dir_.path() / ("run_" + std::to_string(delay_ms) + ".png");
         const test::RunResult r = test::run_jostle_binary(
-            {"play", (dir_ / "long.scn").string(), "--assets", kAssets, "--out", out.string(), "--size", "160x120",
+            {"play", dir_.file("long.scn"), "--assets", kAssets, "--out", out.string(), "--size", "160x120",
              "--anim", anim.string()},
             "/dev/null", "", delay_ms);
         if (r.status == 130) {
@@ -218,21 +196,21 @@ TEST_F(Interrupt, PlayInterruptedLeavesOnlyWholeFrames) {
                 EXPECT_NO_THROW(read_png(entry.path().string())) << entry.path() << " after SIGINT at " << delay_ms << " ms";
             }
         }
-        EXPECT_EQ(temp_files(dir_), std::vector<std::string>{}) << delay_ms << " ms";
+        EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{}) << delay_ms << " ms";
     }
     EXPECT_GT(interrupted, 0);
 }
 
 TEST_F(Interrupt, RecordInterruptedWritesNothing) {
-    std::ofstream(dir_ / "script.txt") << "hold up 200000\n";
-    const fs::path scn = dir_ / "out.scn";
+    std::ofstream(dir_.path() / "script.txt") << "hold up 200000\n";
+    const fs::path scn = dir_.path() / "out.scn";
     const test::RunResult r = test::run_jostle_binary(
-        {"record", "--assets", kAssets, "--level", "arena", "-o", scn.string(), "--script", (dir_ / "script.txt").string()},
+        {"record", "--assets", kAssets, "--level", "arena", "-o", scn.string(), "--script", dir_.file("script.txt")},
         "/dev/null", "", 300);
     EXPECT_EQ(r.status, 130);
     EXPECT_EQ(r.err, kInterrupted);
     EXPECT_FALSE(fs::exists(scn));
-    EXPECT_EQ(temp_files(dir_), std::vector<std::string>{});
+    EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{});
 }
 
 // The library's side, in this process: a signal while commit_updates stages its files makes
@@ -254,7 +232,7 @@ TEST_F(Interrupt, CommitUpdatesStopsBeforeRenamingAnything) {
                  Interrupted);
     EXPECT_EQ(staged, (std::vector<std::string>{"a.trace", "a.tick_30.png"}));
     EXPECT_TRUE(same_files(snapshot(scenarios()), before));
-    EXPECT_EQ(temp_files(dir_), std::vector<std::string>{});
+    EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{});
 }
 
 }  // namespace

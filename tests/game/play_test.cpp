@@ -5,7 +5,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -18,22 +17,17 @@
 #include "play.h"
 #include "render/apng_reader.h"
 #include "game/run_jostle.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
 
 namespace fs = std::filesystem;
 
+using test::read_text;
 using test::RunResult;
 
 RunResult run_jostle(const std::vector<std::string>& args) { return test::run_jostle_binary(args); }
-
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 std::string usage_error(const std::string& message) {
     return "jostle play: " + message + "\nRun 'jostle play --help' for usage.\n";
@@ -43,17 +37,9 @@ const std::string kAssets = JOSTLE_ASSETS_DIR;
 
 class Play : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::path(::testing::TempDir()) /
-               ("play_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-                std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-        level_hash_ = game::ArenaGame(kAssets).level_hash("arena");
-    }
-    void TearDown() override { fs::remove_all(dir_); }
+    void SetUp() override { level_hash_ = game::ArenaGame(kAssets).level_hash("arena"); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string path(const std::string& name) const { return dir_.file(name); }
 
     // The arena scenario header (the current level hash) and `body`, as NAME in the folder.
     std::string scenario(const std::string& name, const std::string& body, const std::string& hash = "") {
@@ -79,7 +65,7 @@ protected:
         EXPECT_EQ(r.err, usage_error(message));
     }
 
-    fs::path dir_;
+    const test::TempFolder dir_{"play"};
     std::string level_hash_;
 };
 
@@ -159,7 +145,7 @@ TEST_F(Play, BadInputExitsTwoNamingFileAndLine) {
     EXPECT_EQ(r.err, "jostle play: " + lives + ":8: unknown game variable 'lives' (expected one of: score, shots, balls, fastest, touches)\n");
 
     // The levels come from --assets: a level unknown there, and a broken level file.
-    const fs::path assets = dir_ / "assets";
+    const fs::path assets = dir_.path() / "assets";
     fs::create_directories(assets / "levels");
     std::ofstream((assets / "levels" / "arena.level").string(), std::ios::binary) << "jostle-level 1\nsize 0 480\nplayer 1 1\n";
     std::ofstream((assets / "levels" / "other.level").string(), std::ios::binary) << "jostle-level 1\n";

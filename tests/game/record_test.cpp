@@ -5,13 +5,10 @@
 // and against `jostle play --trace` (the same with and without rendering), re-recording with
 // --from/--at (the kept ticks, their hashes and directives, the new script after them), and
 // what an expectation that fails while recording does (a note; the file is still written).
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,12 +21,14 @@
 #include "jostle/replay/replay.h"
 #include "jostle/replay/scenario.h"
 #include "record.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
 
 namespace fs = std::filesystem;
 
+using test::read_text;
 using test::RunResult;
 using ::testing::EndsWith;
 using ::testing::HasSubstr;
@@ -40,13 +39,6 @@ const std::string kAssets = JOSTLE_ASSETS_DIR;
 // Where a command line names the output file; expect_rejected runs it with a new path and
 // with an existing file there.
 const std::string kOut = "@OUT@";
-
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 std::string usage_error(const std::string& message) {
     return "jostle record: " + message + "\nRun 'jostle record --help' for usage.\n";
@@ -92,16 +84,7 @@ constexpr const char* kScriptBody =
 
 class Record : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::path(::testing::TempDir()) /
-               ("record_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-                std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string path(const std::string& name) const { return dir_.file(name); }
 
     std::string write(const std::string& name, const std::string& text) const {
         std::ofstream(path(name), std::ios::binary) << text;
@@ -109,12 +92,7 @@ protected:
     }
 
     // The files in the folder, sorted (a leftover temporary file shows here).
-    std::vector<std::string> listing() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
+    std::vector<std::string> listing() const { return test::file_names(dir_.path()); }
 
     // The header the recorder writes for the arena.
     std::string header(std::uint64_t seed = 1, int tick_rate = 60) const {
@@ -186,7 +164,7 @@ protected:
     }
 
     const game::ArenaGame game_{kAssets};
-    fs::path dir_;
+    const test::TempFolder dir_{"record"};
 };
 
 TEST_F(Record, BadScriptStepsExitTwoNamingFileLineAndColumn) {

@@ -5,7 +5,6 @@
 // expected, actual and diff images, loaded; a passing scenario is not shown.
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,11 +13,14 @@
 
 #include "arena.h"
 #include "game/run_jostle.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
 
 namespace fs = std::filesystem;
+
+using test::read_text;
 
 const std::string kAssets = JOSTLE_ASSETS_DIR;
 const std::string kChromium = JOSTLE_CHROMIUM;  // found by CMake; "...-NOTFOUND" when missing
@@ -34,13 +36,6 @@ window.addEventListener('load', () => {
 });
 </script>
 )";
-
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 // The part of the DOM dump for the scenario with this id (up to the next scenario), or "".
 std::string section(const std::string& dom, const std::string& id) {
@@ -67,25 +62,22 @@ std::string loaded(const std::string& html, const std::string& image_class) {
 class ReportInBrowser : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::path(::testing::TempDir()) / ("report_browser_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_ / "scenarios");
+        fs::create_directories(dir_.path() / "scenarios");
         level_hash_ = game::ArenaGame(kAssets).level_hash("arena");
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     void scenario(const std::string& name, const std::string& inputs) {
-        std::ofstream(dir_ / "scenarios" / (name + ".scn"), std::ios::binary)
+        std::ofstream(dir_.path() / "scenarios" / (name + ".scn"), std::ios::binary)
             << "jostle-scenario 1\nengine 0.1.0\nlevel arena\nseed 1\ntick-rate 60\nlevel-hash " << level_hash_ << "\n\n"
             << inputs << "at 30 screenshot\n";
     }
 
     test::RunResult check(std::vector<std::string> args) {
-        args.insert(args.begin(), {"check", "--assets", kAssets, (dir_ / "scenarios").string()});
+        args.insert(args.begin(), {"check", "--assets", kAssets, dir_.file("scenarios")});
         return test::run_jostle_binary(args);
     }
 
-    fs::path dir_;
+    const test::TempFolder dir_{"report_browser"};
     std::string level_hash_;
 };
 
@@ -101,9 +93,9 @@ TEST_F(ReportInBrowser, ShowsEachFailingScenarioWithItsImagesAndFirstDivergentTi
     scenario("fresh", "0-4 right\n5-49 up\n");
     ASSERT_EQ(check({"--update"}).status, 0);
     scenario("wall #2", "0-9 left\n10-14 up\n15-49 left up\n");
-    fs::remove(dir_ / "scenarios" / "fresh.tick_30.png");
+    fs::remove(dir_.path() / "scenarios" / "fresh.tick_30.png");
 
-    const fs::path report = dir_ / "report";
+    const fs::path report = dir_.path() / "report";
     const test::RunResult r = check({"--report", report.string()});
     ASSERT_EQ(r.status, 1) << r.out << r.err;
     ASSERT_THAT(r.out, ::testing::HasSubstr("first divergent tick 15"));
@@ -117,7 +109,7 @@ TEST_F(ReportInBrowser, ShowsEachFailingScenarioWithItsImagesAndFirstDivergentTi
 
     const test::RunResult browser = test::run_program(
         kChromium, {"--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-dev-shm-usage",
-                    "--user-data-dir=" + (dir_ / "profile").string(), "--virtual-time-budget=10000", "--dump-dom",
+                    "--user-data-dir=" + dir_.file("profile"), "--virtual-time-budget=10000", "--dump-dom",
                     "file://" + (report / "report_probe.html").string()});
     ASSERT_EQ(browser.status, 0) << browser.err;
     const std::string& dom = browser.out;

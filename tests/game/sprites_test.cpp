@@ -3,8 +3,6 @@
 // needs: real transparency with anti-aliased edges, and irregular masks for the pixel-perfect
 // things (a tree with a ragged outline, a wreck with a hole, a blob).
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -12,25 +10,20 @@
 #include "game/run_jostle.h"
 #include "jostle/collision.h"
 #include "jostle/render/png_io.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
 
 namespace fs = std::filesystem;
 
+using test::read_text;
+
 const fs::path kSprites = fs::path(JOSTLE_ASSETS_DIR) / "sprites";
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 TEST(Sprites, TheCommittedFilesAreWhatTheProgramDraws) {
-    const fs::path out = fs::path(::testing::TempDir()) / ("sprites_" + std::to_string(::getpid()));
-    fs::remove_all(out);
-    fs::create_directories(out);
+    const test::TempFolder temp("sprites");
+    const fs::path& out = temp.path();
     const test::RunResult r = test::run_program(JOSTLE_MAKE_SPRITES, {out.string()});
     ASSERT_EQ(r.status, 0) << r.err;
     int files = 0;
@@ -45,7 +38,6 @@ TEST(Sprites, TheCommittedFilesAreWhatTheProgramDraws) {
     int committed_files = 0;
     for (const auto& entry : fs::directory_iterator(kSprites)) committed_files += entry.path().extension() == ".png";
     EXPECT_EQ(committed_files, files) << "a committed sprite the program no longer draws";
-    fs::remove_all(out);
 }
 
 TEST(Sprites, EachHasTransparencyAndAntiAliasedEdges) {

@@ -11,6 +11,7 @@
 #include "jostle/core/error.h"
 #include "jostle/render/animation.h"
 #include "render/apng_reader.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
@@ -53,21 +54,9 @@ std::vector<Image> shown_frames(const test::Apng& apng, int unit) {
 
 class Animation : public ::testing::Test {
 protected:
-    void SetUp() override {
-        folder_ = fs::path(::testing::TempDir()) /
-                  ("jostle_anim_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(folder_);
-        fs::create_directories(folder_);
-    }
-    void TearDown() override { fs::remove_all(folder_); }
-    std::vector<std::string> files() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(folder_)) names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-    std::string path(const char* name) const { return (folder_ / name).string(); }
-    fs::path folder_;
+    std::vector<std::string> files() const { return test::file_names(folder_.path()); }
+    std::string path(const char* name) const { return folder_.file(name); }
+    const test::TempFolder folder_{"jostle_anim"};
 };
 
 TEST_F(Animation, ViewerShowsExactlyTheFramesAddedAndPlainPngReadersSeeTheFirst) {
@@ -215,7 +204,7 @@ TEST_F(Animation, BadSettingsAndUnwritablePathsAreErrorsNamingThePath) {
     EXPECT_EQ(error_of({.delay_den = 70000}), p + ": delay_den 70000: expected 1..65535");
     EXPECT_EQ(error_of({.loops = -1}), p + ": loops -1: expected 0..65535");
 
-    const std::string missing = (folder_ / "no_such_folder" / "a.png").string();
+    const std::string missing = (folder_.path() / "no_such_folder" / "a.png").string();
     try {
         AnimationWriter writer(missing);
         FAIL() << "no error";

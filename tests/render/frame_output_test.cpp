@@ -7,6 +7,7 @@
 
 #include "jostle/core/error.h"
 #include "jostle/render/frame_output.h"
+#include "test_support.h"
 
 using namespace jostle;
 
@@ -31,12 +32,6 @@ Image gradient(int w, int h, std::uint8_t seed) {
     Image im{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h) * 4)};
     for (std::size_t i = 0; i < im.rgba.size(); ++i) im.rgba[i] = static_cast<std::uint8_t>(i * 7 + seed);
     return im;
-}
-
-std::filesystem::path fresh_dir(const std::string& name) {
-    const auto dir = std::filesystem::path(::testing::TempDir()) / ("frames_" + name);
-    std::filesystem::remove_all(dir);
-    return dir;
 }
 
 }  // namespace
@@ -81,7 +76,8 @@ TEST(FrameFileName, ZeroPaddedRealFrameNumbers) {
 }
 
 TEST(FrameWriter, WritesEveryFrameCompletelyAndInOrder) {
-    const auto dir = fresh_dir("ok");
+    const test::TempFolder temp("frames");
+    const auto dir = temp.path() / "ok";
     std::vector<Image> images;
     {
         FrameWriter writer({.folder = dir.string(), .max_queued = 2});
@@ -101,11 +97,11 @@ TEST(FrameWriter, WritesEveryFrameCompletelyAndInOrder) {
     }
     // Nothing but the frames: no temporary files left behind.
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{}), 12);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(FrameWriter, FolderThatCannotBeMadeIsAnInputError) {
-    const auto dir = fresh_dir("blocked");
+    const test::TempFolder temp("frames");
+    const auto dir = temp.path() / "blocked";
     std::filesystem::create_directories(dir);
     std::ofstream(dir / "file") << "x";
     try {
@@ -114,11 +110,11 @@ TEST(FrameWriter, FolderThatCannotBeMadeIsAnInputError) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("cannot create the frame folder"), std::string::npos) << e.what();
     }
-    std::filesystem::remove_all(dir);
 }
 
 TEST(FrameWriter, AWriteErrorSurfacesInFinishAndLaterWrites) {
-    const auto dir = fresh_dir("vanishing");
+    const test::TempFolder temp("frames");
+    const auto dir = temp.path() / "vanishing";
     FrameWriter writer({.folder = dir.string()});
     writer.finish();
     // The folder disappears under the writer and a file takes its name: writes must fail.
@@ -127,5 +123,4 @@ TEST(FrameWriter, AWriteErrorSurfacesInFinishAndLaterWrites) {
     writer.write(1, gradient(8, 8, 1));
     EXPECT_THROW(writer.finish(), InputError);
     EXPECT_THROW(writer.write(2, gradient(8, 8, 2)), InputError);
-    std::filesystem::remove(dir);
 }

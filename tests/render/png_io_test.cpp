@@ -1,8 +1,6 @@
 // png_io_test.cpp: read_png on every colour type in tests/data (made by make_pngs.py)
 // and on broken files, and write_png_atomic: round trips, overwrites, no temporary files
 // left behind, errors naming the path.
-#include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -13,6 +11,7 @@
 
 #include "jostle/core/error.h"
 #include "jostle/render/png_io.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
@@ -110,21 +109,9 @@ TEST(ReadPng, SizeLimitsAreCheckedFromTheHeader) {
 
 class WritePng : public ::testing::Test {
 protected:
-    void SetUp() override {
-        std::string templ = (fs::temp_directory_path() / "jostle_png_test_XXXXXX").string();
-        ASSERT_NE(mkdtemp(templ.data()), nullptr);
-        folder_ = templ;
-    }
-    void TearDown() override { fs::remove_all(folder_); }
+    std::vector<std::string> files() const { return test::file_names(folder_.path()); }
 
-    std::vector<std::string> files() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(folder_)) names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-    fs::path folder_;
+    const test::TempFolder folder_{"jostle_png_test"};
 };
 
 Image pattern_image(int width, int height, std::uint32_t seed) {
@@ -139,7 +126,7 @@ Image pattern_image(int width, int height, std::uint32_t seed) {
 
 TEST_F(WritePng, RoundTripsAtEveryLevelAndLeavesNoTemporaryFile) {
     const Image image = pattern_image(37, 23, 7);
-    const std::string path = (folder_ / "frame.png").string();
+    const std::string path = folder_.file("frame.png");
     for (int level : {0, 1, 6, 9}) {
         write_png_atomic(path, image, level);
         const Image back = read_png(path);
@@ -151,7 +138,7 @@ TEST_F(WritePng, RoundTripsAtEveryLevelAndLeavesNoTemporaryFile) {
 }
 
 TEST_F(WritePng, OverwritesAnExistingFile) {
-    const std::string path = (folder_ / "a.png").string();
+    const std::string path = folder_.file("a.png");
     write_png_atomic(path, pattern_image(5, 5, 1));
     const Image second = pattern_image(2, 3, 2);
     write_png_atomic(path, second);
@@ -160,7 +147,7 @@ TEST_F(WritePng, OverwritesAnExistingFile) {
 }
 
 TEST_F(WritePng, MissingFolderIsAnErrorNamingThePath) {
-    const std::string path = (folder_ / "no_such_folder" / "a.png").string();
+    const std::string path = (folder_.path() / "no_such_folder" / "a.png").string();
     try {
         write_png_atomic(path, pattern_image(2, 2, 3));
         FAIL() << "no error";
@@ -172,8 +159,8 @@ TEST_F(WritePng, MissingFolderIsAnErrorNamingThePath) {
 
 TEST_F(WritePng, FailedRenameRemovesTheTemporaryFile) {
     // The target is a non-empty folder: the rename fails after the data is written.
-    fs::create_directories(folder_ / "taken" / "inside");
-    const std::string path = (folder_ / "taken").string();
+    fs::create_directories(folder_.path() / "taken" / "inside");
+    const std::string path = folder_.file("taken");
     try {
         write_png_atomic(path, pattern_image(2, 2, 4));
         FAIL() << "no error";
@@ -184,7 +171,7 @@ TEST_F(WritePng, FailedRenameRemovesTheTemporaryFile) {
 }
 
 TEST_F(WritePng, MalformedImageIsAProgrammingError) {
-    const std::string path = (folder_ / "a.png").string();
+    const std::string path = folder_.file("a.png");
     EXPECT_DEATH(write_png_atomic(path, Image{2, 2, {}}), "rgba.size");
     EXPECT_DEATH(write_png_atomic(path, Image{}), "image sides");
     EXPECT_DEATH(write_png_atomic(path, pattern_image(1, 1, 0), 10), "compression level");

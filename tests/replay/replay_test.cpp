@@ -4,13 +4,12 @@
 #include "jostle/replay/replay.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <memory>
 
 #include "jostle/core/error.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
@@ -328,9 +327,8 @@ TEST_F(Replay, OsmesaScreenshotShowsTheLevelFittedToTheFrame) {
 }
 
 TEST_F(Replay, FramesAreWrittenForTheSelectedTicks) {
-    const std::filesystem::path dir =
-        std::filesystem::path(::testing::TempDir()) / ("replay_frames_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
+    const test::TempFolder temp("replay_frames");
+    const std::filesystem::path dir = temp.path() / "frames";
     ReplayOptions o = null_options();
     o.out_dir = dir.string();
     o.frames = *FrameSelection::parse("2-5");
@@ -338,14 +336,10 @@ TEST_F(Replay, FramesAreWrittenForTheSelectedTicks) {
     const ReplayResult r = replay(game_, scenario("at 8 end\n"), o);
     EXPECT_EQ(r.frames_rendered, 2);
     EXPECT_EQ(r.files_written, (std::vector<std::string>{(dir / "frame_000002.png").string(), (dir / "frame_000004.png").string()}));
-    std::vector<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    EXPECT_EQ(names, (std::vector<std::string>{"frame_000002.png", "frame_000004.png"}));
+    EXPECT_EQ(test::file_names(dir), (std::vector<std::string>{"frame_000002.png", "frame_000004.png"}));
     const Image im = read_png((dir / "frame_000004.png").string());
     EXPECT_EQ(im.width, 64);
     EXPECT_EQ(im.height, 48);
-    std::filesystem::remove_all(dir);
 }
 
 TEST_F(Replay, ProgressIsCalledOncePerTickWithDoneAndTotal) {

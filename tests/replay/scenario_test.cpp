@@ -4,7 +4,6 @@
 #include "jostle/replay/scenario.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +12,7 @@
 #include <random>
 
 #include "jostle/core/error.h"
+#include "test_support.h"
 
 namespace jostle {
 namespace {
@@ -337,9 +337,8 @@ TEST(Scenario, FormatReadsBackAsTheSameScenario) {
 }
 
 TEST(Scenario, LoadScenarioReadsAFileAndNamesItInErrors) {
-    const std::filesystem::path dir =
-        std::filesystem::path(::testing::TempDir()) / ("scenario_load_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const test::TempFolder temp("scenario_load");
+    const std::filesystem::path& dir = temp.path();
     const std::string good = (dir / "good.scn").string();
     const std::string bad = (dir / "bad.scn").string();
     std::ofstream(good, std::ios::binary) << with_header("0-3 up\n");
@@ -361,7 +360,6 @@ TEST(Scenario, LoadScenarioReadsAFileAndNamesItInErrors) {
     } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()), missing + ": cannot open the scenario file");
     }
-    std::filesystem::remove_all(dir);
 }
 
 // ---------------------------------------------------------------------------------------
