@@ -35,6 +35,8 @@ def collect(benchmarks):
         if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
             continue
         r["anchor"] |= b.get("label") == "anchor"
+        if b.get("run_type") != "aggregate" or b.get("aggregate_name") == "median":
+            r["raw"] = b  # every field, counters included (the median's when repeated)
         row = (b["real_time"] * MS_PER[b["time_unit"]], b.get("frames/s"), b.get("bytes"))
         if b.get("run_type") == "aggregate":
             r["median"] = row
