@@ -289,7 +289,7 @@ public:
                     const Obb& box = std::get<Obb>(shape);
                     const auto it = sprite_ids_.find("crate");
                     if (it == sprite_ids_.end()) renderer.fill_shape(shape, kCrateColor);
-                    else renderer.draw_sprite(it->second, box.center, box.angle, box.half * (2.0f / 32.0f));
+                    else renderer.draw_sprite(it->second, box.center, box.angle(), box.half * (2.0f / 32.0f));
                     break;
                 }
                 case Kind::rock:

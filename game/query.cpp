@@ -265,7 +265,7 @@ Obb parse_obb(const Json& j) {
         throw BadQuery("\"half\" must be >= 0 on both axes (half extents), got " + format_vec(box.half));
     }
     if (const Json* angle = fields.optional("angle")) {
-        box.angle = to_float(*angle, "\"angle\"", "a finite number (radians)");
+        box.set_angle(to_float(*angle, "\"angle\"", "a finite number (radians)"));
     }
     return box;
 }

@@ -270,7 +270,7 @@ ex::Poly exact_at(const Template& t, D2 c) {
 bool place(const Template& t, D2 c, Obb& obb, Polygon& poly, b2PolygonShape& b2, ex::Poly& exact) {
     if (t.box) {
         obb = Obb{f2(c), Vec2{to_float(t.hx), to_float(t.hy)}, t.angle};
-        b2.SetAsBox(obb.half.x, obb.half.y, b2o::to_b2(obb.center), obb.angle);
+        b2.SetAsBox(obb.half.x, obb.half.y, b2o::to_b2(obb.center), obb.angle());
         b2.m_radius = 0.0f;
         exact = ex::make_poly(obb);
         return true;

@@ -286,7 +286,7 @@ struct PolyShape {
     std::string describe() const {
         switch (kind) {
         case PolyKind::obb:
-            return fmt("Obb{%s, %s, %.9g}", str(obb.center).c_str(), str(obb.half).c_str(), dd(obb.angle));
+            return fmt("Obb{%s, %s, %.9g}", str(obb.center).c_str(), str(obb.half).c_str(), dd(obb.angle()));
         case PolyKind::aabb: return fmt("Aabb{%s, %s}", str(aabb.min).c_str(), str(aabb.max).c_str());
         case PolyKind::polygon: break;
         }

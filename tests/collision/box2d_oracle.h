@@ -58,7 +58,7 @@ inline bool make_b2_polygon(std::span<const Vec2> pts, b2PolygonShape* out) {
 
 inline b2PolygonShape make_b2_box(const Obb& box) {
     b2PolygonShape s;
-    s.SetAsBox(box.half.x, box.half.y, to_b2(box.center), box.angle);
+    s.SetAsBox(box.half.x, box.half.y, to_b2(box.center), box.angle());
     s.m_radius = 0.0f;
     return s;
 }
@@ -225,8 +225,8 @@ inline Poly make_poly(std::span<const Vec2> pts) {
 // The exact box described by the float parameters (corners in double from the float
 // angle), in the same order as SetAsBox: (-hx,-hy), (hx,-hy), (hx,hy), (-hx,hy).
 inline Poly make_poly(const Obb& box) {
-    const double c = std::cos(static_cast<double>(box.angle));
-    const double s = std::sin(static_cast<double>(box.angle));
+    const double c = std::cos(static_cast<double>(box.angle()));
+    const double s = std::sin(static_cast<double>(box.angle()));
     const double hx = box.half.x, hy = box.half.y;
     const std::array<D2, 4> local{D2{-hx, -hy}, D2{hx, -hy}, D2{hx, hy}, D2{-hx, hy}};
     std::array<D2, 4> w{};

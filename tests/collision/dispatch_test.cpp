@@ -229,12 +229,11 @@ TEST(Dispatch, MaskCastAndSweepThroughTheGenericEntries) {
 // ---------------------------------------------------------------------------------------
 
 std::vector<Shape> hostile_shapes() {
-    Polygon nan_poly = test::box_polygon(0, 0, 4, 4);
-    nan_poly.points[1].x = kNan;
-    Polygon inf_poly = test::box_polygon(0, 0, 4, 4);
-    inf_poly.points[0].y = kInf;
-    Polygon neg_inf_poly = test::box_polygon(0, 0, 4, 4);
-    neg_inf_poly.points[3].x = -kInf;
+    // A Polygon cannot hold a non-finite vertex: moving or turning one into NaN or infinity
+    // gives the empty polygon, which is what these stand for.
+    const Polygon nan_poly = test::box_polygon(0, 0, 4, 4).moved({kNan, 0});
+    const Polygon inf_poly = test::box_polygon(0, 0, 4, 4).moved({0, kInf});
+    const Polygon neg_inf_poly = test::box_polygon(0, 0, 4, 4).transformed(Transform{{-kInf, 0}, Rot{}});
     return {
         Aabb{{kNan, 0}, {4, 4}},
         Aabb{{0, 0}, {4, kInf}},
@@ -288,8 +287,7 @@ TEST(Hostile, CollideAndOverlapsMiss) {
 TEST(Hostile, TypedCollideMiss) {
     // The typed entry points, not only the dispatcher.
     const Polygon sq = test::box_polygon(0, 0, 4, 4);
-    Polygon bad = sq;
-    bad.points[2].y = kNan;
+    const Polygon bad = sq.moved({0, kNan});
     EXPECT_TRUE(is_miss(collide(Aabb{{kNan, 0}, {4, 4}}, Aabb{{1, 1}, {3, 3}})));
     EXPECT_TRUE(is_miss(collide(Aabb{{1, 1}, {3, 3}}, Aabb{{0, 0}, {kInf, 4}})));
     EXPECT_FALSE(overlaps(Aabb{{kNan, 0}, {4, 4}}, Aabb{{1, 1}, {3, 3}}));

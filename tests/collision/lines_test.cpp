@@ -250,12 +250,12 @@ TEST(ClosestPointOnBoundary, InsidePointGoesToTheNearestEdge) {
     const Vec2 p = closest_point_on_boundary(sq, {3, 2}, &edge);
     EXPECT_VEC_NEAR(p, (Vec2{4, 2}), 1e-6f);
     ASSERT_GE(edge, 0);
-    ASSERT_LT(edge, sq.count);
-    EXPECT_VEC_NEAR(sq.normals[static_cast<std::size_t>(edge)], (Vec2{1, 0}), 1e-6f);
+    ASSERT_LT(edge, sq.count());
+    EXPECT_VEC_NEAR(sq.normals()[static_cast<std::size_t>(edge)], (Vec2{1, 0}), 1e-6f);
     // Outside near the top: q = (1,-2) -> (1,0) on the edge with normal (0,-1).
     const Vec2 t = closest_point_on_boundary(sq, {1, -2}, &edge);
     EXPECT_VEC_NEAR(t, (Vec2{1, 0}), 1e-6f);
-    EXPECT_VEC_NEAR(sq.normals[static_cast<std::size_t>(edge)], (Vec2{0, -1}), 1e-6f);
+    EXPECT_VEC_NEAR(sq.normals()[static_cast<std::size_t>(edge)], (Vec2{0, -1}), 1e-6f);
     // Without the edge out-parameter.
     EXPECT_VEC_NEAR(closest_point_on_boundary(sq, {2, 0.5f}), (Vec2{2, 0}), 1e-6f);
 }

@@ -21,28 +21,28 @@ using test::kSqrt2;
 // edge i. With y down and that winding, the outward normal of e is (e.y, -e.x) / |e|, and it
 // points away from the centroid. Checked here from the points alone.
 void expect_normalised(const Polygon& p) {
-    ASSERT_GE(p.count, 3);
-    ASSERT_LE(p.count, kMaxPolygonVertices);
-    const auto n = static_cast<std::size_t>(p.count);
+    ASSERT_GE(p.count(), 3);
+    ASSERT_LE(p.count(), kMaxPolygonVertices);
+    const auto n = static_cast<std::size_t>(p.count());
     Vec2 centroid{};
-    for (std::size_t i = 0; i < n; ++i) centroid += p.points[i];
+    for (std::size_t i = 0; i < n; ++i) centroid += p.points()[i];
     centroid = (1.0f / static_cast<float>(n)) * centroid;
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec2 e0 = p.points[(i + 1) % n] - p.points[i];
-        const Vec2 e1 = p.points[(i + 2) % n] - p.points[(i + 1) % n];
+        const Vec2 e0 = p.points()[(i + 1) % n] - p.points()[i];
+        const Vec2 e1 = p.points()[(i + 2) % n] - p.points()[(i + 1) % n];
         EXPECT_GT(cross(e0, e1), 0.0f) << "vertex " << i;
         const float len = length(e0);
         const Vec2 expected{e0.y / len, -e0.x / len};
-        EXPECT_VEC_NEAR(p.normals[i], expected, 1e-5f);
-        EXPECT_TRUE(test::is_unit(p.normals[i]));
-        EXPECT_LT(dot(p.normals[i], centroid - p.points[i]), 0.0f) << "normal " << i << " points inward";
+        EXPECT_VEC_NEAR(p.normals()[i], expected, 1e-5f);
+        EXPECT_TRUE(test::is_unit(p.normals()[i]));
+        EXPECT_LT(dot(p.normals()[i], centroid - p.points()[i]), 0.0f) << "normal " << i << " points inward";
     }
 }
 
 bool same_vertex_set(const Polygon& p, const std::vector<Vec2>& pts) {
-    if (static_cast<std::size_t>(p.count) != pts.size()) return false;
+    if (static_cast<std::size_t>(p.count()) != pts.size()) return false;
     for (const Vec2& q : pts) {
-        if (std::find(p.points.begin(), p.points.begin() + p.count, q) == p.points.begin() + p.count) return false;
+        if (std::find(p.points().begin(), p.points().begin() + p.count(), q) == p.points().begin() + p.count()) return false;
     }
     return true;
 }
@@ -57,15 +57,15 @@ TEST(MakePolygon, StoredWindingIsAcceptedAsIs) {
     std::string error;
     const auto p = make(pts, &error);
     ASSERT_TRUE(p.has_value()) << error;
-    EXPECT_EQ(p->count, 4);
+    EXPECT_EQ(p->count(), 4);
     EXPECT_TRUE(same_vertex_set(*p, pts));
     expect_normalised(*p);
     // Edge (0,0)->(4,0) is the top edge (y down): outward normal (0,-1).
     for (int i = 0; i < 4; ++i) {
         const auto k = static_cast<std::size_t>(i);
-        if (p->points[k] == Vec2{0, 0}) {
-            EXPECT_EQ(p->points[(k + 1) % 4], (Vec2{4, 0}));
-            EXPECT_VEC_NEAR(p->normals[k], (Vec2{0, -1}), 1e-6f);
+        if (p->points()[k] == Vec2{0, 0}) {
+            EXPECT_EQ(p->points()[(k + 1) % 4], (Vec2{4, 0}));
+            EXPECT_VEC_NEAR(p->normals()[k], (Vec2{0, -1}), 1e-6f);
         }
     }
 }
@@ -86,7 +86,7 @@ TEST(MakePolygon, TriangleBothWindings) {
     for (const auto& pts : {cw, ccw}) {
         const auto p = make(pts, nullptr);
         ASSERT_TRUE(p.has_value());
-        EXPECT_EQ(p->count, 3);
+        EXPECT_EQ(p->count(), 3);
         EXPECT_TRUE(same_vertex_set(*p, pts));
         expect_normalised(*p);
     }
@@ -103,7 +103,7 @@ TEST(MakePolygon, SixteenVerticesAcceptedSeventeenRejected) {
     };
     const auto p16 = make(ring(16), nullptr);
     ASSERT_TRUE(p16.has_value());
-    EXPECT_EQ(p16->count, 16);
+    EXPECT_EQ(p16->count(), 16);
     expect_normalised(*p16);
     std::string error;
     EXPECT_FALSE(make(ring(17), &error).has_value());
@@ -217,7 +217,7 @@ TEST(MakePolygon, SmallPolygonsFarFromTheOriginAccepted) {
 
 TEST(ToPolygon, FromAabb) {
     const Polygon p = to_polygon(Aabb{{1, 2}, {5, 3}});
-    EXPECT_EQ(p.count, 4);
+    EXPECT_EQ(p.count(), 4);
     EXPECT_TRUE(same_vertex_set(p, {{1, 2}, {5, 2}, {5, 3}, {1, 3}}));
     expect_normalised(p);
 }
@@ -238,7 +238,7 @@ TEST(ToPolygon, FromObbAndCorners) {
         EXPECT_GT(cross(e0, e1), 0.0f) << "corners() must be in polygon order";
     }
     const Polygon p = to_polygon(box);
-    EXPECT_EQ(p.count, 4);
+    EXPECT_EQ(p.count(), 4);
     expect_normalised(p);
 }
 

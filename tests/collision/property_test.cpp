@@ -547,12 +547,12 @@ TEST(Property, ContainsAndClosestPointOnBoundaryMatchTheOracle) {
         std::ostringstream ctx;
         ctx << describe(p) << " q " << vec(q) << ": contains " << in << ", boundary point " << vec(b) << " edge "
             << edge << ", oracle signed distance " << sd;
-        bool bad = (sd < -tol && !in) || (sd > tol && in) || edge < 0 || edge >= p.count;
+        bool bad = (sd < -tol && !in) || (sd > tol && in) || edge < 0 || edge >= p.count();
         if (!bad) {
             // On the boundary, on the reported edge, at distance |sd| from q.
             const auto e = static_cast<std::size_t>(edge);
-            const auto e1 = static_cast<std::size_t>((edge + 1) % p.count);
-            bad = test::dist_point_segment(d2(b), d2(p.points[e]), d2(p.points[e1])) > tol ||
+            const auto e1 = static_cast<std::size_t>((edge + 1) % p.count());
+            bad = test::dist_point_segment(d2(b), d2(p.points()[e]), d2(p.points()[e1])) > tol ||
                   std::fabs(test::dlen(d2(q) - d2(b)) - std::fabs(sd)) > tol;
         }
         if (bad && f.fail(ctx.str())) return;

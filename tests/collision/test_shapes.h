@@ -99,16 +99,14 @@ inline Polygon box_polygon(float x0, float y0, float x1, float y1) {
 
 // Translations written here rather than taken from the module, so the tests stay independent.
 inline Aabb moved(const Aabb& s, Vec2 d) { return {s.min + d, s.max + d}; }
-inline Obb moved(const Obb& s, Vec2 d) { return {s.center + d, s.half, s.angle}; }
+inline Obb moved(const Obb& s, Vec2 d) { return {s.center + d, s.half, s.angle()}; }
 inline Circle moved(const Circle& s, Vec2 d) { return {s.center + d, s.radius}; }
 inline Segment moved(const Segment& s, Vec2 d) { return {s.a + d, s.b + d}; }
 // Far from the origin the moved vertices round, so the edges turn slightly: the polygon is
 // rebuilt so that its normals belong to the rounded edges (as the oracle sees them).
 inline Polygon moved(const Polygon& s, Vec2 d) {
-    Polygon p = s;
-    for (int i = 0; i < p.count; ++i) p.points[static_cast<std::size_t>(i)] += d;
-    if (auto rebuilt = make_polygon(std::span<const Vec2>(p.points.data(), static_cast<std::size_t>(p.count))))
-        return *rebuilt;
+    const Polygon p = s.moved(d);
+    if (auto rebuilt = make_polygon(p.points())) return *rebuilt;
     return p;
 }
 inline PlacedMask moved(const PlacedMask& s, Vec2 d) {
@@ -160,8 +158,8 @@ inline std::vector<D2> vertices(const Aabb& s) {
     return {{s.min.x, s.min.y}, {s.max.x, s.min.y}, {s.max.x, s.max.y}, {s.min.x, s.max.y}};
 }
 inline std::vector<D2> vertices(const Obb& s) {
-    const double c = std::cos(static_cast<double>(s.angle));
-    const double n = std::sin(static_cast<double>(s.angle));
+    const double c = std::cos(static_cast<double>(s.angle()));
+    const double n = std::sin(static_cast<double>(s.angle()));
     std::vector<D2> out;
     const double sx[4] = {-1, 1, 1, -1};
     const double sy[4] = {-1, -1, 1, 1};
@@ -174,7 +172,7 @@ inline std::vector<D2> vertices(const Obb& s) {
 }
 inline std::vector<D2> vertices(const Polygon& s) {
     std::vector<D2> out;
-    for (int i = 0; i < s.count; ++i) out.push_back(d2(s.points[static_cast<std::size_t>(i)]));
+    for (int i = 0; i < s.count(); ++i) out.push_back(d2(s.points()[static_cast<std::size_t>(i)]));
     return out;
 }
 inline std::vector<D2> vertices(const Segment& s) { return {d2(s.a), d2(s.b)}; }
@@ -370,12 +368,12 @@ inline std::string describe(const Shape& s) {
     };
     auto p = [&](Vec2 v) { return "(" + f(v.x) + ", " + f(v.y) + ")"; };
     if (const auto* a = std::get_if<Aabb>(&s)) out = "Aabb{" + p(a->min) + ", " + p(a->max) + "}";
-    if (const auto* o = std::get_if<Obb>(&s)) out = "Obb{" + p(o->center) + ", " + p(o->half) + ", " + f(o->angle) + "}";
+    if (const auto* o = std::get_if<Obb>(&s)) out = "Obb{" + p(o->center) + ", " + p(o->half) + ", " + f(o->angle()) + "}";
     if (const auto* c = std::get_if<Circle>(&s)) out = "Circle{" + p(c->center) + ", " + f(c->radius) + "}";
     if (const auto* g = std::get_if<Segment>(&s)) out = "Segment{" + p(g->a) + ", " + p(g->b) + "}";
     if (const auto* q = std::get_if<Polygon>(&s)) {
         out = "Polygon{";
-        for (int i = 0; i < q->count; ++i) out += p(q->points[static_cast<std::size_t>(i)]) + " ";
+        for (int i = 0; i < q->count(); ++i) out += p(q->points()[static_cast<std::size_t>(i)]) + " ";
         out += "}";
     }
     if (const auto* m = std::get_if<PlacedMask>(&s)) out = "Mask at (" + std::to_string(m->x) + ", " + std::to_string(m->y) + ")";

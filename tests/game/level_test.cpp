@@ -81,9 +81,9 @@ TEST(Level, EveryLineKind) {
     EXPECT_EQ(poly.name, "p");
     EXPECT_EQ(poly.position.x, 150.0f);
     EXPECT_EQ(poly.position.y, 120.0f);
-    ASSERT_EQ(poly.polygon.count, 5);
+    ASSERT_EQ(poly.polygon.count(), 5);
     bool found = false;  // the vertices are kept around the position (the winding may be reversed)
-    for (int i = 0; i < poly.polygon.count; ++i) found |= poly.polygon.points[i].x == 18.0f && poly.polygon.points[i].y == 6.0f;
+    for (int i = 0; i < poly.polygon.count(); ++i) found |= poly.polygon.points()[i].x == 18.0f && poly.polygon.points()[i].y == 6.0f;
     EXPECT_TRUE(found);
 
     const LevelThing& pickup = level.things[4];
@@ -147,7 +147,7 @@ TEST(Level, MassPropsAndBlobs) {
     EXPECT_EQ(level.things[0].mass, 4.0f);
     EXPECT_EQ(level.things[0].radius, 16.0f);
     EXPECT_EQ(level.things[1].mass, 0.5f);
-    EXPECT_EQ(level.things[1].polygon.count, 3);
+    EXPECT_EQ(level.things[1].polygon.count(), 3);
     EXPECT_EQ(level.things[2].mass, 1.0f);
     EXPECT_EQ(level.things[3].kind, LevelThing::Kind::prop);
     EXPECT_EQ(level.things[3].sprite, "tree");

@@ -159,10 +159,7 @@ Shape moved(const Shape& shape, Vec2 d) {
         Vec2 d;
         Shape operator()(Aabb b) const { return Aabb{b.min + d, b.max + d}; }
         Shape operator()(Obb b) const { b.center = b.center + d; return b; }
-        Shape operator()(Polygon p) const {
-            for (int i = 0; i < p.count; ++i) p.points[static_cast<std::size_t>(i)] = p.points[static_cast<std::size_t>(i)] + d;
-            return p;
-        }
+        Shape operator()(const Polygon& p) const { return p.moved(d); }
         Shape operator()(Circle c) const { c.center = c.center + d; return c; }
         Shape operator()(Segment s) const { return Segment{s.a + d, s.b + d}; }
         Shape operator()(PlacedMask m) const {

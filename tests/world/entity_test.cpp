@@ -811,7 +811,7 @@ TEST(EntityFixedStepper, whole_steps_remainders_and_the_cap) {
 }
 
 std::vector<Vec2> points_of(const Polygon& p) {
-    return {p.points.begin(), p.points.begin() + p.count};
+    return {p.points().begin(), p.points().begin() + p.count()};
 }
 
 Vec2 turned(float angle, Vec2 v) {
@@ -847,15 +847,15 @@ TEST(EntityColliders, a_polygon_turns_with_the_entity) {
     const Polygon& p = std::get<Polygon>(s);
     EXPECT_TRUE(same_points(points_of(p), {{50, 50}, {50, 60}, {45, 50}}, 1e-4f));
     // still a valid polygon: positive winding, outward unit normals
-    for (int i = 0; i < p.count; ++i) {
+    for (int i = 0; i < p.count(); ++i) {
         const auto k = static_cast<std::size_t>(i);
-        const Vec2 e0 = p.points[(k + 1) % 3] - p.points[k];
-        const Vec2 e1 = p.points[(k + 2) % 3] - p.points[(k + 1) % 3];
+        const Vec2 e0 = p.points()[(k + 1) % 3] - p.points()[k];
+        const Vec2 e1 = p.points()[(k + 2) % 3] - p.points()[(k + 1) % 3];
         EXPECT_GT(cross(e0, e1), 0.0f);
-        EXPECT_NEAR(dot(p.normals[k], e0), 0.0f, 1e-4f);
-        EXPECT_NEAR(length(p.normals[k]), 1.0f, 1e-5f);
-        const Vec2 inward = p.points[(k + 2) % 3] - p.points[k];
-        EXPECT_LT(dot(p.normals[k], inward), 0.0f);
+        EXPECT_NEAR(dot(p.normals()[k], e0), 0.0f, 1e-4f);
+        EXPECT_NEAR(length(p.normals()[k]), 1.0f, 1e-5f);
+        const Vec2 inward = p.points()[(k + 2) % 3] - p.points()[k];
+        EXPECT_LT(dot(p.normals()[k], inward), 0.0f);
     }
     // Turning it by a step with angular velocity: an eighth of a turn more, to 3 pi / 4.
     ASSERT_TRUE(w.set_angular_velocity(e, (kPi / 4) * 60.0f));

@@ -133,7 +133,7 @@ CastHit cast(Vec2 from, Vec2 to, const Aabb& box) {
 CastHit cast(Vec2 from, Vec2 to, const Obb& box) {
     // The slab test in the box's own frame; t is the same in both frames.
     if (!valid_motion(from, to - from) || !valid(box)) return {};
-    const Rot q = Rot::from_angle(box.angle);
+    const Rot q = box.rotation();
     CastHit h = cast_box(inv_rotate(q, from - box.center), inv_rotate(q, to - box.center), -box.half, box.half);
     if (!h.hit) return h;
     h.point = h.t == 0.0f ? from : from + h.t * (to - from);
@@ -148,17 +148,17 @@ CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
     const Vec2 d = to - from;
     float max_side = -INFINITY;
     int max_edge = 0;
-    for (int i = 0; i < poly.count; ++i) {
-        const float side = dot(poly.normals[i], from - poly.points[i]);
+    for (int i = 0; i < poly.count(); ++i) {
+        const float side = dot(poly.normals()[i], from - poly.points()[i]);
         if (side > max_side) { max_side = side; max_edge = i; }
     }
-    if (max_side <= 0.0f) return starts_inside(from, max_side == 0.0f ? poly.normals[max_edge] : Vec2{});
+    if (max_side <= 0.0f) return starts_inside(from, max_side == 0.0f ? poly.normals()[max_edge] : Vec2{});
     float t_enter = 0.0f;
     float t_exit = 1.0f;
     Vec2 normal{};
-    for (int i = 0; i < poly.count; ++i) {
-        const Vec2 n = poly.normals[i];
-        const float num = dot(n, poly.points[i] - from);  // < 0: from is outside this edge
+    for (int i = 0; i < poly.count(); ++i) {
+        const Vec2 n = poly.normals()[i];
+        const float num = dot(n, poly.points()[i] - from);  // < 0: from is outside this edge
         const float den = dot(n, d);
         if (den == 0.0f) {
             if (num < 0.0f) return {};  // parallel to the edge, outside it

@@ -32,34 +32,34 @@ Manifold collide(const Polygon& a, const Circle& b) {
     const Vec2 c = b.center;
     float max_sep = -INFINITY;
     int max_edge = 0;
-    for (int i = 0; i < a.count; ++i) {
-        const float s = dot(a.normals[i], c - a.points[i]);
+    for (int i = 0; i < a.count(); ++i) {
+        const float s = dot(a.normals()[i], c - a.points()[i]);
         if (s > max_sep) { max_sep = s; max_edge = i; }
     }
     if (max_sep > b.radius) return {};  // an edge normal separates: early out
-    if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals[max_edge]);  // centre inside
+    if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);  // centre inside
     // Beside the edge of greatest separation (c projects inside it, tested from each end so
     // that a long edge rounds neither), that edge is the nearest feature: its own normal and
     // the separation are exact where normalising c - p would round.
-    const Vec2 p0 = a.points[max_edge];
-    const Vec2 p1 = a.points[(max_edge + 1) % a.count];
+    const Vec2 p0 = a.points()[max_edge];
+    const Vec2 p1 = a.points()[(max_edge + 1) % a.count()];
     const Vec2 e = p1 - p0;
-    if (dot(c - p0, e) > 0.0f && dot(c - p1, e) < 0.0f) return hit_with(b.radius - max_sep, a.normals[max_edge]);
+    if (dot(c - p0, e) > 0.0f && dot(c - p1, e) < 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
     // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
     // plain difference of points (exact for nearby floats).
     Vec2 d{};
     float dist2 = INFINITY;
     int vertex = 0;
-    for (int i = 0; i < a.count; ++i) {
-        const Vec2 o = c - a.points[i];
+    for (int i = 0; i < a.count(); ++i) {
+        const Vec2 o = c - a.points()[i];
         if (dot(o, o) < dist2) { dist2 = dot(o, o); d = o; vertex = i; }
     }
     if (!(dist2 <= b.radius * b.radius)) return {};
     // A direction outside the vertex's cone of normals means the centre is on the vertex up
     // to rounding: the nearer of its two faces' normals.
-    const Vec2 n_prev = a.normals[(vertex + a.count - 1) % a.count];
-    const Vec2 n_next = a.normals[vertex];
-    Vec2 n = normalize_or(d, a.normals[max_edge]);
+    const Vec2 n_prev = a.normals()[(vertex + a.count() - 1) % a.count()];
+    const Vec2 n_next = a.normals()[vertex];
+    Vec2 n = normalize_or(d, a.normals()[max_edge]);
     if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) n = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
     return hit_with(b.radius - std::sqrt(dist2), n);
 }
@@ -74,25 +74,25 @@ Manifold collide_sat(const Polygon& a, const Circle& b) {
     const Vec2 c = b.center;
     int nearest = 0;
     float nearest_d2 = INFINITY;
-    for (int i = 0; i < a.count; ++i) {
-        const float d2 = length_squared(a.points[i] - c);
+    for (int i = 0; i < a.count(); ++i) {
+        const float d2 = length_squared(a.points()[i] - c);
         if (d2 < nearest_d2) { nearest_d2 = d2; nearest = i; }
     }
     float best = INFINITY;
     Vec2 best_normal{1.0f, 0.0f};
     auto test_axis = [&](Vec2 u) {
         // Relative to the centre, for precision far from the origin.
-        float lo = dot(a.points[0] - c, u), hi = lo;
-        for (int i = 1; i < a.count; ++i) {
-            const float d = dot(a.points[i] - c, u);
+        float lo = dot(a.points()[0] - c, u), hi = lo;
+        for (int i = 1; i < a.count(); ++i) {
+            const float d = dot(a.points()[i] - c, u);
             lo = d < lo ? d : lo;
             hi = d > hi ? d : hi;
         }
         return detail::consider_axis(u, hi + b.radius, b.radius - lo, best, best_normal);
     };
-    for (int i = 0; i < a.count; ++i)
-        if (!test_axis(a.normals[i])) return {};
-    const Vec2 to_vertex = a.points[nearest] - c;
+    for (int i = 0; i < a.count(); ++i)
+        if (!test_axis(a.normals()[i])) return {};
+    const Vec2 to_vertex = a.points()[nearest] - c;
     if (to_vertex != Vec2{} && !test_axis(normalize_or(to_vertex, Vec2{1.0f, 0.0f}))) return {};
     return hit_with(best, best_normal);
 }
@@ -125,7 +125,7 @@ Manifold collide(const Aabb& a, const Circle& b) {
 Manifold collide(const Obb& a, const Circle& b) {
     // The clamp in the box's own frame, then the normal turned back.
     if (!valid(a) || !valid(b)) return {};
-    const Rot q = Rot::from_angle(a.angle);
+    const Rot q = a.rotation();
     const Vec2 local = inv_rotate(q, b.center - a.center);
     Manifold m = detail::box_circle(-a.half, a.half, local, b.radius);
     if (m.hit) m.normal = detail::plain_zeros(rotate(q, m.normal));

@@ -18,15 +18,31 @@ inline bool finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 inline bool valid(const Aabb& b) {
     return finite(b.min) && finite(b.max) && b.min.x <= b.max.x && b.min.y <= b.max.y && finite(b.max - b.min);
 }
-inline bool valid(const Obb& b) { return finite(b.center) && finite(b.half) && finite(b.angle) && b.half.x >= 0.0f && b.half.y >= 0.0f; }
+inline bool valid(const Obb& b) { return finite(b.center) && finite(b.half) && finite(b.angle()) && b.half.x >= 0.0f && b.half.y >= 0.0f; }
 inline bool valid(const Circle& c) { return finite(c.center) && finite(c.radius) && c.radius >= 0.0f; }
 inline bool valid(const Segment& s) { return finite(s.a) && finite(s.b) && finite(dot(s.b - s.a, s.b - s.a)); }
-inline bool valid(const Polygon& p) {
-    if (p.count < 3 || p.count > kMaxPolygonVertices) return false;
-    for (int i = 0; i < p.count; ++i)
-        if (!finite(p.points[i]) || !finite(p.normals[i])) return false;
-    return true;
-}
+// A Polygon is well formed by construction (its fields are private); only the empty one is
+// not a shape.
+inline bool valid(const Polygon& p) { return p.count() >= 3; }
+
+// The module's own way to build a Polygon without make_polygon's checks, for shapes whose
+// validity follows from how they are made (box corners and axes, swept rectangles). Callers
+// guarantee finite points in positive-turn order and outward unit normals (or degenerate
+// boxes of zero size, which SAT handles).
+struct PolygonAccess {
+    static Polygon make(std::span<const Vec2> points, std::span<const Vec2> normals) {
+        Polygon p;
+        p.count_ = static_cast<int>(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            p.points_[i] = points[i];
+            p.normals_[i] = normals[i];
+        }
+        return p;
+    }
+    static Vec2* points(Polygon& p) { return p.points_.data(); }
+    static Vec2* normals(Polygon& p) { return p.normals_.data(); }
+};
+
 // A motion from `from` by `d` whose end is finite too (a sum can overflow to infinity).
 inline bool valid_motion(Vec2 from, Vec2 d) { return finite(from) && finite(d) && finite(from + d); }
 
@@ -79,8 +95,8 @@ inline Vec2 offset_from_segment(Vec2 a, Vec2 b, Vec2 p) { return (p - a) - segme
 inline Vec2 offset_from_boundary(const Polygon& poly, Vec2 p, int* edge) {
     Vec2 best{};
     float best_d2 = INFINITY;
-    for (int i = 0; i < poly.count; ++i) {
-        const Vec2 rel = offset_from_segment(poly.points[i], poly.points[(i + 1) % poly.count], p);
+    for (int i = 0; i < poly.count(); ++i) {
+        const Vec2 rel = offset_from_segment(poly.points()[i], poly.points()[(i + 1) % poly.count()], p);
         const float d2 = dot(rel, rel);
         if (d2 < best_d2) { best_d2 = d2; best = rel; *edge = i; }
     }

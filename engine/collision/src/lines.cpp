@@ -111,7 +111,7 @@ ClosestPoint closest_point(const Aabb& box, Vec2 q) {
 
 ClosestPoint closest_point(const Obb& box, Vec2 q) {
     if (!valid(box) || !finite(q)) return kNoClosestPoint;
-    const Rot r = Rot::from_angle(box.angle);
+    const Rot r = box.rotation();
     const ClosestPoint local = closest_in_box(-box.half, box.half, inv_rotate(r, q - box.center));
     if (local.distance == 0.0f) return {q, 0.0f};
     return {rotate(r, local.point) + box.center, local.distance};
@@ -119,9 +119,9 @@ ClosestPoint closest_point(const Obb& box, Vec2 q) {
 
 bool contains(const Polygon& poly, Vec2 q) {
     if (!detail::valid(poly)) return false;
-    for (int i = 0; i < poly.count; ++i)
-        if (!(dot(poly.normals[i], q - poly.points[i]) <= 0.0f)) return false;
-    return poly.count >= 3;
+    for (int i = 0; i < poly.count(); ++i)
+        if (!(dot(poly.normals()[i], q - poly.points()[i]) <= 0.0f)) return false;
+    return poly.count() >= 3;
 }
 
 Vec2 closest_point_on_boundary(const Polygon& poly, Vec2 q, int* edge) {

@@ -540,8 +540,8 @@ std::optional<ConvexRegion> raw_region_of(const Aabb& box) {
 }
 
 std::optional<ConvexRegion> raw_region_of(const Obb& box) {
-    if (!is_finite(box.center) || !is_finite(box.half) || !std::isfinite(box.angle)) return std::nullopt;
-    const Rot q = Rot::from_angle(box.angle);  // the same float rotation as the rest of the module
+    if (!is_finite(box.center) || !is_finite(box.half) || !std::isfinite(box.angle())) return std::nullopt;
+    const Rot q = box.rotation();  // the same float rotation as the rest of the module
     const double ux = q.c, uy = q.s, vx = -q.s, vy = q.c;
     const double cx = box.center.x, cy = box.center.y, hx = box.half.x, hy = box.half.y;
     const double cu = ux * cx + uy * cy;
@@ -566,18 +566,18 @@ std::optional<ConvexRegion> raw_region_of(const Obb& box) {
 
 // Either winding is accepted; fewer than 3 or more than 16 points, or no area, is a miss.
 std::optional<ConvexRegion> raw_region_of(const Polygon& poly) {
-    if (poly.count < 3 || poly.count > kMaxPolygonVertices) return std::nullopt;
-    const auto n = static_cast<std::size_t>(poly.count);
+    if (poly.count() < 3 || poly.count() > kMaxPolygonVertices) return std::nullopt;
+    const auto n = static_cast<std::size_t>(poly.count());
     double area2 = 0.0;
     Bounds b{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
              -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     double sx = 0.0;
     double sy = 0.0;
-    Vec2 top = poly.points[0];
-    Vec2 bottom = poly.points[0];
+    Vec2 top = poly.points()[0];
+    Vec2 bottom = poly.points()[0];
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec2 p = poly.points[i];
-        const Vec2 p2 = poly.points[(i + 1) % n];
+        const Vec2 p = poly.points()[i];
+        const Vec2 p2 = poly.points()[(i + 1) % n];
         if (!is_finite(p)) return std::nullopt;
         if (p.y < top.y) top = p;
         if (p.y > bottom.y) bottom = p;
@@ -591,8 +591,8 @@ std::optional<ConvexRegion> raw_region_of(const Polygon& poly) {
     const double sign = area2 > 0.0 ? 1.0 : -1.0;
     ConvexRegion r;
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec2 p = poly.points[i];
-        const Vec2 p2 = poly.points[(i + 1) % n];
+        const Vec2 p = poly.points()[i];
+        const Vec2 p2 = poly.points()[(i + 1) % n];
         // Inside when cross(e, q - p) >= 0 (for cross(e[i], e[i+1]) > 0): n = (e.y, -e.x).
         const double ex = static_cast<double>(p2.x) - p.x;
         const double ey = static_cast<double>(p2.y) - p.y;

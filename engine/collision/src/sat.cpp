@@ -66,7 +66,7 @@ SegmentAxes segment_axes(const Segment& s) {
 
 namespace {
 detail::ConvexView view_of(const Polygon& p, Vec2 offset = {}) {
-    return {p.points.data(), p.count, p.normals.data(), p.count, offset};
+    return {p.points().data(), p.count(), p.normals().data(), p.count(), offset};
 }
 detail::ConvexView view_of(const detail::SegmentAxes& s, Vec2 offset = {}) {
     return {s.points, 2, s.axes, s.axis_count, offset};
@@ -91,7 +91,7 @@ Manifold box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
 
 Manifold collide(const Obb& a, const Obb& b) {
     if (!valid(a) || !valid(b)) return {};
-    return box_box(a.half, Rot::from_angle(a.angle), b.half, Rot::from_angle(b.angle), b.center - a.center);
+    return box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center);
 }
 
 Manifold collide(const Aabb& a, const Obb& b) {
@@ -99,7 +99,7 @@ Manifold collide(const Aabb& a, const Obb& b) {
     // the origin, so the offset is formed from differences instead.
     if (!valid(a) || !valid(b)) return {};
     const Vec2 half = (a.max - a.min) * 0.5f;
-    return box_box(half, Rot{}, b.half, Rot::from_angle(b.angle), (b.center - a.min) - half);
+    return box_box(half, Rot{}, b.half, b.rotation(), (b.center - a.min) - half);
 }
 
 Manifold collide(const Polygon& a, const Polygon& b) {

@@ -34,13 +34,13 @@ std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* e
     if (!(area2 != 0.0f)) return fail("polygon has zero area (all vertices on one line)");
 
     Polygon poly;
-    poly.count = n;
-    for (int i = 0; i < n; ++i) poly.points[i] = area2 > 0.0f ? points[i] : points[n - 1 - i];
+    poly.count_ = n;
+    for (int i = 0; i < n; ++i) poly.points_[i] = area2 > 0.0f ? points[i] : points[n - 1 - i];
 
     for (int i = 0; i < n; ++i) {
-        const Vec2 p0 = poly.points[i];
-        const Vec2 e0 = poly.points[(i + 1) % n] - p0;
-        const Vec2 e1 = poly.points[(i + 2) % n] - poly.points[(i + 1) % n];
+        const Vec2 p0 = poly.points_[i];
+        const Vec2 e0 = poly.points_[(i + 1) % n] - p0;
+        const Vec2 e1 = poly.points_[(i + 2) % n] - poly.points_[(i + 1) % n];
         // Relative test: a turn of less than ~1e-6 rad is collinear within float precision.
         const float turn = cross(e0, e1);
         const int at = (area2 > 0.0f ? (i + 1) % n : n - 1 - (i + 1) % n);
@@ -51,11 +51,11 @@ std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* e
         // whose turns all have the same sign but which wind around twice.
         for (int j = 0; j < n; ++j) {
             if (j == i || j == (i + 1) % n) continue;
-            if (!(cross(e0, poly.points[j] - p0) > 0.0f))
+            if (!(cross(e0, poly.points_[j] - p0) > 0.0f))
                 return fail("polygon is not convex: it folds over itself at vertex " + std::to_string(at));
         }
         // Outward normal of a positively turning polygon: (e.y, -e.x).
-        poly.normals[i] = normalize_or(Vec2{e0.y, -e0.x}, Vec2{1.0f, 0.0f});
+        poly.normals_[i] = normalize_or(Vec2{e0.y, -e0.x}, Vec2{1.0f, 0.0f});
     }
     return poly;
 }
@@ -73,33 +73,49 @@ std::array<Vec2, 4> box_corners(Vec2 center, Vec2 half, Rot q) {
 }
 }  // namespace
 
-std::array<Vec2, 4> corners(const Obb& box) { return box_corners(box.center, box.half, Rot::from_angle(box.angle)); }
+std::array<Vec2, 4> corners(const Obb& box) { return box_corners(box.center, box.half, box.rotation()); }
 
 namespace {
 // A polygon from 4 box corners (possibly degenerate: zero-size boxes are allowed as shapes,
 // so no validation; normals come from the box axes).
 Polygon box_polygon(const std::array<Vec2, 4>& c, Rot q) {
-    Polygon p;
-    p.count = 4;
-    for (int i = 0; i < 4; ++i) p.points[i] = c[i];
-    p.normals[0] = rotate(q, Vec2{0.0f, -1.0f});
-    p.normals[1] = rotate(q, Vec2{1.0f, 0.0f});
-    p.normals[2] = rotate(q, Vec2{0.0f, 1.0f});
-    p.normals[3] = rotate(q, Vec2{-1.0f, 0.0f});
-    return p;
+    const Vec2 normals[4] = {rotate(q, Vec2{0.0f, -1.0f}), rotate(q, Vec2{1.0f, 0.0f}), rotate(q, Vec2{0.0f, 1.0f}),
+                             rotate(q, Vec2{-1.0f, 0.0f})};
+    return detail::PolygonAccess::make(c, normals);
 }
 }  // namespace
 
 Polygon to_polygon(const Obb& box) {
-    const Rot q = Rot::from_angle(box.angle);
+    if (!valid(box)) return {};
+    const Rot q = box.rotation();
     return box_polygon(box_corners(box.center, box.half, q), q);
 }
 
 Polygon detail::centred_polygon(const Obb& box) {
-    const Rot q = Rot::from_angle(box.angle);
+    if (!valid(box)) return {};
+    const Rot q = box.rotation();
     return box_polygon(box_corners({}, box.half, q), q);
 }
-Polygon to_polygon(const Aabb& box) { return box_polygon(corners(box), Rot{}); }
+Polygon to_polygon(const Aabb& box) { return valid(box) ? box_polygon(corners(box), Rot{}) : Polygon{}; }
+
+Polygon Polygon::moved(Vec2 d) const {
+    Polygon out = *this;
+    for (int i = 0; i < count_; ++i) {
+        out.points_[i] = points_[i] + d;
+        if (!finite(out.points_[i])) return {};
+    }
+    return out;
+}
+
+Polygon Polygon::transformed(const Transform& xf) const {
+    Polygon out = *this;
+    for (int i = 0; i < count_; ++i) {
+        out.points_[i] = apply(xf, points_[i]);
+        out.normals_[i] = rotate(xf.q, normals_[i]);
+        if (!finite(out.points_[i]) || !finite(out.normals_[i])) return {};
+    }
+    return out;
+}
 
 namespace {
 Aabb bounds_of_points(const Vec2* p, int n) {
@@ -114,12 +130,15 @@ Aabb bounds_of_points(const Vec2* p, int n) {
 
 Aabb bounds(const Obb& box) {
     // Projected radius on each world axis: |R| * half.
-    const Rot q = Rot::from_angle(box.angle);
+    const Rot q = box.rotation();
     const Vec2 r{std::fabs(q.c) * box.half.x + std::fabs(q.s) * box.half.y,
                  std::fabs(q.s) * box.half.x + std::fabs(q.c) * box.half.y};
     return {box.center - r, box.center + r};
 }
-Aabb bounds(const Polygon& poly) { return bounds_of_points(poly.points.data(), poly.count); }
+Aabb bounds(const Polygon& poly) {
+    if (!valid(poly)) return {};
+    return bounds_of_points(poly.points().data(), poly.count());
+}
 Aabb bounds(const Circle& c) {
     const Vec2 r{c.radius, c.radius};
     return {c.center - r, c.center + r};

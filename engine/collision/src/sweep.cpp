@@ -253,19 +253,17 @@ bool swept_overlaps(const Circle& moving, Vec2 v, const Circle& fixed) {
     }
     // The rectangle's corners turn negatively (c + d, c + v + d, ...), so they are stored in
     // reverse; its outward normals are +-v/|v| and +-d/r.
-    Polygon rect;
-    rect.count = 4;
     const Vec2 dir{v.x / speed, v.y / speed};
-    for (int i = 0; i < 4; ++i) rect.points[i] = cap.rectangle[3 - i];
-    rect.normals = {-perp(dir), dir, perp(dir), -dir};
-    return collide(rect, fixed).hit;
+    const Vec2 points[4] = {cap.rectangle[3], cap.rectangle[2], cap.rectangle[1], cap.rectangle[0]};
+    const Vec2 normals[4] = {-perp(dir), dir, perp(dir), -dir};
+    return collide(detail::PolygonAccess::make(points, normals), fixed).hit;
 }
 
 SweepHit sweep(const Circle& moving, Vec2 v, const Polygon& poly) {
     if (!valid(moving) || !valid(poly) || !detail::valid_motion(moving.center, v)) return {};
     const Manifold start = collide(poly, moving);
     if (start.hit) return contact_at_start(moving, v, start);
-    return sweep_convex(moving, v, poly.points.data(), poly.normals.data(), poly.count,
+    return sweep_convex(moving, v, poly.points().data(), poly.normals().data(), poly.count(),
                         cast(moving.center, moving.center + v, poly));
 }
 
@@ -276,7 +274,7 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Aabb& box) {
     const Manifold start = collide(box, moving);
     if (start.hit) return contact_at_start(moving, v, start);
     const Polygon p = to_polygon(box);
-    return sweep_convex(moving, v, p.points.data(), p.normals.data(), 4, cast(moving.center, moving.center + v, box));
+    return sweep_convex(moving, v, p.points().data(), p.normals().data(), 4, cast(moving.center, moving.center + v, box));
 }
 
 SweepHit sweep(const Circle& moving, Vec2 v, const Obb& box) {
@@ -286,7 +284,7 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Obb& box) {
     if (start.hit) return contact_at_start(moving, v, start);
     const Polygon p = detail::centred_polygon(box);
     const Vec2 from = moving.center - box.center;
-    SweepHit h = sweep_convex(Circle{from, moving.radius}, v, p.points.data(), p.normals.data(), 4, cast(from, from + v, p));
+    SweepHit h = sweep_convex(Circle{from, moving.radius}, v, p.points().data(), p.normals().data(), 4, cast(from, from + v, p));
     if (h.hit) h.point += box.center;
     return h;
 }

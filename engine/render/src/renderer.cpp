@@ -233,7 +233,7 @@ void Renderer::fill_shape(const Shape& shape, Color color, float thickness) {
         float thickness;
         void operator()(const Aabb& b) const { const auto c = corners(b); r.polygon_fill(c, color); }
         void operator()(const Obb& b) const { const auto c = corners(b); r.polygon_fill(c, color); }
-        void operator()(const Polygon& p) const { r.polygon_fill(std::span<const Vec2>(p.points.data(), static_cast<std::size_t>(p.count)), color); }
+        void operator()(const Polygon& p) const { r.polygon_fill(p.points(), color); }
         void operator()(const Circle& c) const { r.polygon_fill(r.circle_points(c), color); }
         void operator()(const Segment& s) const { r.image_line(r.to_image(s.a), r.to_image(s.b), color, thickness); }
         void operator()(const PlacedMask& m) const {
@@ -266,7 +266,7 @@ void Renderer::outline_shape(const Shape& shape, Color color, float thickness) {
         void operator()(const Aabb& b) const { const auto c = corners(b); r.polyline(c, true, color, thickness); }
         void operator()(const Obb& b) const { const auto c = corners(b); r.polyline(c, true, color, thickness); }
         void operator()(const Polygon& p) const {
-            r.polyline(std::span<const Vec2>(p.points.data(), static_cast<std::size_t>(p.count)), true, color, thickness);
+            r.polyline(p.points(), true, color, thickness);
         }
         void operator()(const Circle& c) const { r.polyline(r.circle_points(c), true, color, thickness); }
         void operator()(const Segment& s) const { r.image_line(r.to_image(s.a), r.to_image(s.b), color, thickness); }

@@ -81,18 +81,10 @@ Shape Collider::placed(Vec2 position, float angle) const {
         const Transform& xf;
         float angle;
         Shape operator()(const Aabb& b) const { return Aabb{b.min + xf.p, b.max + xf.p}; }
-        Shape operator()(const Obb& b) const { return Obb{apply(xf, b.center), b.half, b.angle + angle}; }
+        Shape operator()(const Obb& b) const { return Obb{apply(xf, b.center), b.half, b.angle() + angle}; }
         Shape operator()(const Circle& c) const { return Circle{apply(xf, c.center), c.radius}; }
         Shape operator()(const Segment& s) const { return Segment{apply(xf, s.a), apply(xf, s.b)}; }
-        Shape operator()(const Polygon& p) const {
-            // A rotation keeps convexity and winding, so the polygon stays valid as it is.
-            Polygon out = p;
-            for (int i = 0; i < p.count && i < kMaxPolygonVertices; ++i) {
-                out.points[i] = apply(xf, p.points[i]);
-                out.normals[i] = rotate(xf.q, p.normals[i]);
-            }
-            return out;
-        }
+        Shape operator()(const Polygon& p) const { return p.transformed(xf); }
         Shape operator()(const PlacedMask& m) const {
             return PlacedMask{m.mask, add_offset(nearest_pixel(xf.p.x), m.x), add_offset(nearest_pixel(xf.p.y), m.y)};
         }

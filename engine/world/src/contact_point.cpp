@@ -45,7 +45,7 @@ Feature extreme(const Shape& s, Vec2 d) {
         Vec2 d;
         Feature operator()(const Aabb& b) const { const auto c = corners(b); return extreme(c, d); }
         Feature operator()(const Obb& b) const { const auto c = corners(b); return extreme(c, d); }
-        Feature operator()(const Polygon& p) const { return extreme(std::span<const Vec2>(p.points.data(), static_cast<std::size_t>(p.count)), d); }
+        Feature operator()(const Polygon& p) const { return extreme(p.points(), d); }
         Feature operator()(const Segment& g) const { const Vec2 c[2] = {g.a, g.b}; return extreme(c, d); }
         Feature operator()(const Circle& c) const { return {1, {c.center + c.radius * d, {}}}; }
         Feature operator()(const PlacedMask&) const { return {}; }

@@ -23,14 +23,14 @@ void hash_shape(Hasher& h, const Shape& shape, std::uint64_t mask_fingerprint) {
         Hasher& h;
         std::uint64_t fingerprint;
         void operator()(const Aabb& b) const { hash_vec(h, b.min); hash_vec(h, b.max); }
-        void operator()(const Obb& b) const { hash_vec(h, b.center); hash_vec(h, b.half); h.f32(b.angle); }
+        void operator()(const Obb& b) const { hash_vec(h, b.center); hash_vec(h, b.half); h.f32(b.angle()); }
         void operator()(const Circle& c) const { hash_vec(h, c.center); h.f32(c.radius); }
         void operator()(const Segment& s) const { hash_vec(h, s.a); hash_vec(h, s.b); }
         void operator()(const Polygon& p) const {
-            h.u32(static_cast<std::uint32_t>(p.count));
-            for (int i = 0; i < p.count && i < kMaxPolygonVertices; ++i) {
-                hash_vec(h, p.points[i]);
-                hash_vec(h, p.normals[i]);
+            h.u32(static_cast<std::uint32_t>(p.count()));
+            for (int i = 0; i < p.count(); ++i) {
+                hash_vec(h, p.points()[i]);
+                hash_vec(h, p.normals()[i]);
             }
         }
         void operator()(const PlacedMask& m) const {

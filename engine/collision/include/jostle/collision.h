@@ -12,11 +12,14 @@
 //
 // SHAPES (all closed: a shape contains its boundary)
 //   Aabb        {min, max}                   axis-aligned box, min <= max on both axes
-//   Obb         {center, half, angle}        oriented box; corners() gives its 4 corners
+//   Obb         Obb{center, half, angle}     oriented box; corners() gives its 4 corners; the
+//                                            angle's cos/sin are computed once, when it is set
 //   Polygon     make_polygon(points)         convex, 3..16 vertices, either winding accepted;
 //                                            stored with cross(e[i], e[i+1]) > 0 and outward
 //                                            unit normals; non-convex, collinear, repeated or
-//                                            non-finite input is rejected with a message
+//                                            non-finite input is rejected with a message. Its
+//                                            fields are private, so a Polygon is valid (or
+//                                            empty) by construction
 //   Circle      {center, radius}             radius >= 0 (0 is a point)
 //   Segment     {a, b}                       a == b is a point
 //   PlacedMask  {mask, x, y}                 a pixel Mask whose top-left pixel is at integer
@@ -93,7 +96,7 @@
 //   coincident circle centres use normal {1, 0}. Any NaN or infinite coordinate in a shape
 //   makes it hit nothing (a miss, all zeros), never undefined behaviour; closest_point then
 //   answers point {0, 0} at distance +infinity. So does a malformed shape (Aabb min > max,
-//   negative half extents or radius, a Polygon not made by make_polygon with 3..16 vertices),
+//   negative half extents or radius, the empty Polygon),
 //   and a cast or motion whose end overflows to infinity.
 //
 // LIMITS
@@ -129,10 +132,25 @@ struct Aabb {
     Vec2 max;
 };
 
+// An oriented box. Its rotation is turned into cos/sin once, when the angle is set, so that
+// no query pays for a sine and a cosine (the box is immutable in angle except via set_angle).
 struct Obb {
     Vec2 center;
-    Vec2 half;          // half extents along the box's own x and y axes, >= 0
-    float angle = 0.0f;  // radians, +x toward +y
+    Vec2 half;  // half extents along the box's own x and y axes, >= 0
+
+    Obb() = default;
+    Obb(Vec2 center_, Vec2 half_, float angle = 0.0f) : center(center_), half(half_) { set_angle(angle); }
+
+    float angle() const { return angle_; }  // radians, +x toward +y
+    Rot rotation() const { return rotation_; }  // Rot::from_angle(angle())
+    void set_angle(float radians) {
+        angle_ = radians;
+        rotation_ = Rot::from_angle(radians);
+    }
+
+private:
+    float angle_ = 0.0f;
+    Rot rotation_;
 };
 
 struct Circle {
@@ -145,13 +163,35 @@ struct Segment {
     Vec2 b;
 };
 
-// A convex polygon, made by make_polygon (which validates it). Vertices are stored with
-// cross(e[i], e[i+1]) > 0 (clockwise on screen, y down); normals[i] is the outward unit
-// normal of edge points[i] -> points[i+1].
-struct Polygon {
-    int count = 0;
-    std::array<Vec2, kMaxPolygonVertices> points{};
-    std::array<Vec2, kMaxPolygonVertices> normals{};
+namespace detail {
+struct PolygonAccess;  // the collision module's own builders (box polygons, swept rectangles)
+}
+
+// A convex polygon. Only make_polygon (which validates) and the module's own conversions
+// (to_polygon, moved, transformed) make one, so a Polygon is always well formed: 3..16
+// finite vertices with cross(e[i], e[i+1]) > 0 (clockwise on screen, y down) and
+// normals()[i] the outward unit normal of edge points()[i] -> points()[i + 1]; or empty
+// (count() == 0, the default), which hits nothing. Queries therefore never re-validate it.
+class Polygon {
+public:
+    Polygon() = default;  // empty
+
+    int count() const { return count_; }
+    std::span<const Vec2> points() const { return {points_.data(), static_cast<std::size_t>(count_)}; }
+    std::span<const Vec2> normals() const { return {normals_.data(), static_cast<std::size_t>(count_)}; }
+
+    // The polygon translated by d, or rotated by xf.q then translated by xf.p (a rigid motion
+    // keeps convexity, winding and unit normals). A result with a non-finite coordinate is
+    // the empty polygon.
+    Polygon moved(Vec2 d) const;
+    Polygon transformed(const Transform& xf) const;
+
+private:
+    friend std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* error);
+    friend struct detail::PolygonAccess;
+    int count_ = 0;
+    std::array<Vec2, kMaxPolygonVertices> points_{};
+    std::array<Vec2, kMaxPolygonVertices> normals_{};
 };
 
 // A 1-bit pixel mask, bit-packed: row y holds words_per_row() 64-bit words, pixel x in bit
