@@ -12,14 +12,10 @@
 // FAMILIES (the anchor first)
 //   BM_ObbMtd/mix            b2CollidePolygons on SetAsBox boxes vs collide(Obb, Obb) (the 2 + 2
 //                            axis "SAT box"), vs collide(Shape, Shape) (the variant dispatch the
-//                            world calls), and vs that plus detail::contact_point (jostle_point).
-//                            jostle's collide gives the MTD (normal, depth) only, while Box2D
-//                            also clips up to 2 contact points: the collision API has no contact
-//                            point set. The nearest thing the engine has is the world's private
-//                            contact_point (engine/world/src), ONE point, the middle of the
-//                            overlap, made for events and debug drawing; jostle_point times it
-//                            the way the world's step calls it, as a lower bound for a set.
-//   BM_HexMtd/mix            the same for hexagons: b2CollidePolygons vs collide(Polygon, Polygon).
+//                            world calls), and vs contacts(Obb, Obb) (jostle_point: the MTD with
+//                            the 2-point contact set, clipped as Box2D clips its manifold).
+//   BM_HexMtd/mix            the same for hexagons: b2CollidePolygons vs collide(Polygon, Polygon)
+//                            and contacts(Polygon, Polygon).
 //   BM_PolyCircle/hex|obb/mix  b2CollidePolygonAndCircle vs collide(Polygon|Obb, Circle), and for
 //                            hexagons collide_sat (the lecture's second method) as well.
 //   BM_CircleCircle/mix      b2CollideCircles vs collide(Circle, Circle).
@@ -86,7 +82,6 @@
 #include <vector>
 
 #include "collision/box2d_oracle.h"
-#include "internal.h"  // engine/world/src: detail::contact_point, the world's contact point
 #include "jostle/collision.h"
 #include "jostle/core/rng.h"
 
@@ -356,10 +351,10 @@ bool box2d_hit(const PolyPairs& p, std::size_t i) {
     return m.pointCount > 0;
 }
 
-// jostle's MTD and, for jostle_point, the one contact point the engine makes of it.
+// jostle's MTD and, for jostle_point, its contact set.
 struct MtdResult {
     Manifold m;
-    Vec2 point;
+    ContactSet c;
 };
 
 // jostle against the exact SAT (hit, minimum depth, depth along its own normal) and against
@@ -374,7 +369,18 @@ void check_mtd(benchmark::State& state, const PolyPairs& p, const std::vector<Mt
         const double tol = kRel * p.L[i];
         const ex::Sat sat = ex::sat(p.exact[i][0], p.exact[i][1]);
         const Manifold& m = jostle[i].m;
-        const auto outside = [&](std::size_t k) { return ex::signed_distance(p.exact[i][k], d2(jostle[i].point)).d; };
+        // A contact point lies on the incident shape's boundary and at most the depth outside
+        // the other (clipping to the reference edge's extent can leave a deep point past the
+        // reference shape's other edges, in Box2D as here). Returns the worst excess.
+        const auto point_error = [&] {
+            double w = 0.0;
+            for (int k = 0; k < jostle[i].c.count; ++k) {
+                const D2 q = d2(jostle[i].c.points[static_cast<std::size_t>(k)]);
+                const double s0 = ex::signed_distance(p.exact[i][0], q).d, s1 = ex::signed_distance(p.exact[i][1], q).d;
+                w = std::max({w, std::min(std::abs(s0), std::abs(s1)), std::max(s0, s1) - dd(m.depth)});
+            }
+            return w;
+        };
         const std::string what = fmt("exact sep %.9g, jostle hit %d depth %.9g, box2d hit %d", sat.sep, m.hit,
                                      dd(m.depth), box2d[i]);
         if (m.hit ? sat.sep > tol : sat.sep < -tol) c.fail(i, "jostle's hit/no-hit is wrong: " + what);
@@ -385,8 +391,10 @@ void check_mtd(benchmark::State& state, const PolyPairs& p, const std::vector<Mt
         else if (m.hit != (box2d[i] != 0)) {
             if (std::abs(sat.sep) <= tol) ++c.band;
             else c.fail(i, "jostle and Box2D disagree outside the touching band: " + what);
-        } else if (points && m.hit && std::max(outside(0), outside(1)) > dd(m.depth) + tol) {
-            c.fail(i, fmt("the contact point is %.9g outside a shape: ", std::max(outside(0), outside(1))) + what);
+        } else if (points && m.hit != (jostle[i].c.count > 0)) {
+            c.fail(i, fmt("the contact set has %d points: ", jostle[i].c.count) + what);
+        } else if (points && m.hit && point_error() > tol) {
+            c.fail(i, fmt("a contact point is %.9g off a boundary or past the depth: ", point_error()) + what);
         }
     }
     c.report(state);
@@ -420,11 +428,12 @@ void bm_mtd(benchmark::State& state, bool boxes, MtdSide side) {
         time_pool(state, jostle, kPasses, [&](std::size_t i, MtdResult& r) { r.m = collide(p.shape[i][0], p.shape[i][1]); });
         break;
     case MtdSide::jostle_point:
-        // As the world's step does for a touching pair: the manifold, then its contact point.
-        time_pool(state, jostle, kPasses, [&](std::size_t i, MtdResult& r) {
-            r.m = collide(p.shape[i][0], p.shape[i][1]);
-            if (r.m.hit) r.point = detail::contact_point(p.shape[i][0], p.shape[i][1], r.m);
-        });
+        // The MTD with the 2-point contact set (clipping, as b2CollidePolygons does).
+        if (boxes)
+            time_pool(state, jostle, kPasses, [&](std::size_t i, MtdResult& r) { r.c = contacts(p.obb[i][0], p.obb[i][1]); });
+        else
+            time_pool(state, jostle, kPasses, [&](std::size_t i, MtdResult& r) { r.c = contacts(p.poly[i][0], p.poly[i][1]); });
+        for (MtdResult& r : jostle) r.m = r.c.manifold;
         break;
     }
     if (side == MtdSide::box2d) {

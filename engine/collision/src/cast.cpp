@@ -143,35 +143,37 @@ CastHit cast(Vec2 from, Vec2 to, const Obb& box) {
 
 CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
     // Cyrus-Beck: the segment enters the convex polygon at the latest entering edge and
-    // leaves it at the earliest leaving edge.
+    // leaves it at the earliest leaving edge. One pass also finds whether `from` is inside
+    // (on the inner side of every edge): then no edge can end the pass early, since entering
+    // edges give t <= 0 and leaving edges t >= 0.
     if (!valid_motion(from, to - from) || !valid(poly)) return {};
     const Vec2 d = to - from;
-    float max_side = -INFINITY;
+    const Vec2* points = poly.points().data();
+    const Vec2* normals = poly.normals().data();
+    float max_side = -INFINITY;  // how far from is outside its farthest edge
     int max_edge = 0;
-    for (int i = 0; i < poly.count(); ++i) {
-        const float side = dot(poly.normals()[i], from - poly.points()[i]);
-        if (side > max_side) { max_side = side; max_edge = i; }
-    }
-    if (max_side <= 0.0f) return starts_inside(from, max_side == 0.0f ? poly.normals()[max_edge] : Vec2{});
     float t_enter = 0.0f;
     float t_exit = 1.0f;
     Vec2 normal{};
     for (int i = 0; i < poly.count(); ++i) {
-        const Vec2 n = poly.normals()[i];
-        const float num = dot(n, poly.points()[i] - from);  // < 0: from is outside this edge
+        const Vec2 n = normals[i];
+        const float num = dot(n, points[i] - from);  // < 0: from is outside this edge
+        if (-num > max_side) { max_side = -num; max_edge = i; }
         const float den = dot(n, d);
         if (den == 0.0f) {
             if (num < 0.0f) return {};  // parallel to the edge, outside it
             continue;
         }
-        const float t = num / den;
+        // t = num / den, divided only when it moves a bound (comparing num with the bound
+        // times den, whose sign is known, says whether it would).
         if (den < 0.0f) {
-            if (t > t_enter) { t_enter = t; normal = n; }
-        } else if (t < t_exit) {
-            t_exit = t;
+            if (num < t_enter * den) { t_enter = num / den; normal = n; }
+        } else if (num < t_exit * den) {
+            t_exit = num / den;
         }
         if (!(t_enter <= t_exit)) return {};
     }
+    if (max_side <= 0.0f) return starts_inside(from, max_side == 0.0f ? normals[max_edge] : Vec2{});
     return hit_at(from, d, t_enter, normal);
 }
 

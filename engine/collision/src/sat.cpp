@@ -75,23 +75,222 @@ detail::ConvexView view_of(const detail::SegmentAxes& s, Vec2 offset = {}) {
 // 09-58 with the boxes' own axes: 2 + 2 candidate axes. A box's projection on an axis u is
 // its centre's projection plus-minus the projected radius hx |ux.u| + hy |uy.u|, so no
 // corner is projected one by one. d is B's centre minus A's centre.
-Manifold box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
+struct BoxBox {
+    Manifold manifold;
+    int axis = 0;          // the MTD's axis: 0, 1 A's x and y, 2, 3 B's x and y
+    bool positive = true;  // the normal is +axis (or -axis)
+};
+
+BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
     const Vec2 axes[4] = {{qa.c, qa.s}, {-qa.s, qa.c}, {qb.c, qb.s}, {-qb.s, qb.c}};
+    // |cos| of the angles between A's axes (rows) and B's (columns): a box's projected radius
+    // on the other's axis. On its own axes a box's radius is its half extent.
+    const float c00 = std::fabs(dot(axes[0], axes[2])), c01 = std::fabs(dot(axes[0], axes[3]));
+    const float c10 = std::fabs(dot(axes[1], axes[2])), c11 = std::fabs(dot(axes[1], axes[3]));
+    const float radius_a[4] = {half_a.x, half_a.y, half_a.x * c00 + half_a.y * c10, half_a.x * c01 + half_a.y * c11};
+    const float radius_b[4] = {half_b.x * c00 + half_b.y * c01, half_b.x * c10 + half_b.y * c11, half_b.x, half_b.y};
     float best = INFINITY;
     Vec2 best_normal{1.0f, 0.0f};
-    for (const Vec2 u : axes) {
-        const float ra = half_a.x * std::fabs(dot(axes[0], u)) + half_a.y * std::fabs(dot(axes[1], u));
-        const float rb = half_b.x * std::fabs(dot(axes[2], u)) + half_b.y * std::fabs(dot(axes[3], u));
+    BoxBox out;
+    for (int i = 0; i < 4; ++i) {
+        const Vec2 u = axes[i];
+        const float ra = radius_a[i], rb = radius_b[i];
         const float s = dot(d, u);
+        const float before = best;
         if (!detail::consider_axis(u, ra + rb - s, ra + rb + s, best, best_normal)) return {};
+        if (best != before) { out.axis = i; out.positive = best_normal == u; }
     }
-    return detail::hit_with(best, best_normal);
+    out.manifold = detail::hit_with(best, best_normal);
+    return out;
 }
 }  // namespace
 
+// Two convex polygons, B shifted by `offset` (09-62, in the form that needs each face once).
+// Of an axis u, SAT's two pushes measure the gap on either side; for polygons only one side
+// of each edge normal can be the answer: the MTD is the distance from the origin to the
+// boundary of the Minkowski difference A - B, whose edges are A's edges and B's edges turned
+// round, so its outward normals are exactly A's normals and B's normals negated. For A's edge
+// i, B's separation from that edge's line is min over B's vertices of dot(n_i, b_j - a_i);
+// the largest separation over all faces, if <= 0, is minus the depth (09-60), and a face with
+// separation > 0 is a separating axis (09-50's early exit). Every difference is between nearby
+// points, so the result keeps the precision of the shapes' size wherever they are.
+namespace {
+// Two convex polygons, B shifted by `offset` (09-62, in the form that needs each face once).
+// Of an axis u, SAT's two pushes measure the overlap on either side; for polygons only one
+// side of each edge normal can be the answer: the MTD is the distance from the origin to the
+// boundary of the Minkowski difference A - B, whose edges are A's edges and B's edges turned
+// round, so its outward normals are exactly A's normals and B's normals negated. For A's edge
+// i, B's separation from that edge's line is min over B's vertices of dot(n_i, b_j - a_i);
+// the largest separation over all faces, if <= 0, is minus the depth (09-60), and a face with
+// separation > 0 is a separating axis (09-50's early exit). Every difference is between nearby
+// points, so the result keeps the precision of the shapes' size wherever they are.
+struct FaceSeparation {
+    float separation = -INFINITY;
+    int face = 0;
+};
+
+// The largest separation of the point set `others` from the faces of a polygon (its points
+// and outward normals); stops at the first face that separates (or gives NaN: a miss).
+FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int count, const Vec2* others,
+                                   int other_count) {
+    FaceSeparation best;
+    for (int i = 0; i < count; ++i) {
+        const Vec2 n = normals[i];
+        const Vec2 p = points[i];
+        float s = dot(n, others[0] - p);  // 09-51: the lowest projection, relative to the face
+        for (int j = 1; j < other_count; ++j) {
+            const float d = dot(n, others[j] - p);
+            s = d < s ? d : s;
+        }
+        if (!(s <= 0.0f)) return {s, i};  // a gap (or NaN from coordinates past the limits)
+        if (s > best.separation) best = {s, i};  // the first of tied faces wins
+    }
+    return best;
+}
+
+// A convex polygon's vertices and outward normals as the pair code reads them: a Polygon's
+// own arrays, or a box's 4 corners built on the stack (no 16-slot Polygon to fill).
+struct Convex {
+    const Vec2* points = nullptr;
+    const Vec2* normals = nullptr;
+    int count = 0;
+};
+Convex convex(const Polygon& p) { return {p.points().data(), p.normals().data(), p.count()}; }
+
+// An OBB's corners and normals around its centre (positive turns, like to_polygon).
+struct CentredBox {
+    std::array<Vec2, 4> points;
+    Vec2 normals[4];
+    explicit CentredBox(const Obb& box) {
+        const Rot q = box.rotation();
+        const Vec2 ux = rotate(q, Vec2{box.half.x, 0.0f});
+        const Vec2 uy = rotate(q, Vec2{0.0f, box.half.y});
+        points = {-ux - uy, ux - uy, ux + uy, -ux + uy};
+        normals[0] = rotate(q, Vec2{0.0f, -1.0f});
+        normals[1] = rotate(q, Vec2{1.0f, 0.0f});
+        normals[2] = rotate(q, Vec2{0.0f, 1.0f});
+        normals[3] = rotate(q, Vec2{-1.0f, 0.0f});
+    }
+    Convex view() const { return {points.data(), normals, 4}; }
+};
+
+// The MTD of two polygons and the face it came from (the reference face of a contact set).
+struct PolygonContact {
+    Manifold manifold;
+    bool a_face = true;  // the face is A's (normal = its normal) or B's (normal = minus its normal)
+    int face = 0;
+};
+
+PolygonContact polygon_polygon(Convex a, Convex b, Vec2 offset) {
+    const int na = a.count, nb = b.count;
+    Vec2 pb[kMaxPolygonVertices];
+    for (int j = 0; j < nb; ++j) pb[j] = b.points[j] + offset;
+    const FaceSeparation fa = max_face_separation(a.points, a.normals, na, pb, nb);
+    if (!(fa.separation <= 0.0f)) return {};
+    const FaceSeparation fb = max_face_separation(pb, b.normals, nb, a.points, na);
+    if (!(fb.separation <= 0.0f)) return {};
+    // Ties go to A's face, as for every SAT pair. A depth that overflowed is past the limits.
+    const bool a_face = fa.separation >= fb.separation;
+    const float depth = -(a_face ? fa.separation : fb.separation);
+    if (!(depth < INFINITY)) return {};
+    return {detail::hit_with(depth, a_face ? a.normals[fa.face] : -b.normals[fb.face]), a_face,
+            a_face ? fa.face : fb.face};
+}
+
+// Sutherland-Hodgman against one line: keeps the part of the segment where dot(u, p) <= c;
+// false when none is left.
+bool clip(Vec2 (&ends)[2], Vec2 u, float c) {
+    const float d0 = dot(u, ends[0]) - c, d1 = dot(u, ends[1]) - c;
+    if (d0 > 0.0f && d1 > 0.0f) return false;
+    if (d0 > 0.0f) ends[0] = ends[0] + (d0 / (d0 - d1)) * (ends[1] - ends[0]);
+    else if (d1 > 0.0f) ends[1] = ends[1] + (d1 / (d1 - d0)) * (ends[0] - ends[1]);
+    return true;
+}
+
+// The contact set of an overlapping pair (the clipping Box2D and most engines use): the
+// reference face is the MTD's face; the incident face is the other polygon's face most
+// opposed to it; the incident edge is clipped to the reference edge's extent, and the
+// clipped ends that lie on or below the reference face are the contacts, each with its own
+// depth below that face. `ref` and `inc` are the polygons with `inc` shifted by `offset`.
+ContactSet clip_contacts(const PolygonContact& pc, Convex ref, Convex inc, Vec2 offset) {
+    ContactSet out;
+    out.manifold = pc.manifold;
+    if (!pc.manifold.hit) return out;
+    const int nr = ref.count, ni = inc.count;
+    const Vec2 n = ref.normals[pc.face];
+    const Vec2 v1 = ref.points[pc.face];
+    const Vec2 v2 = ref.points[(pc.face + 1) % nr];
+    int k = 0;  // the incident face: its normal most opposed to n
+    float most = INFINITY;
+    for (int i = 0; i < ni; ++i) {
+        const float d = dot(inc.normals[i], n);
+        if (d < most) { most = d; k = i; }
+    }
+    // The incident edge relative to v1, clipped to the reference edge's extent along its
+    // direction t (the side planes s >= 0 and s <= |v2 - v1|).
+    const Vec2 t{-n.y, n.x};  // the edge direction of a positively turning polygon
+    Vec2 ends[2] = {inc.points[k] + offset - v1, inc.points[(k + 1) % ni] + offset - v1};
+    if (clip(ends, -t, 0.0f) && clip(ends, t, dot(t, v2 - v1))) {
+        for (const Vec2 p : ends) {
+            const float h = dot(n, p);  // height above the reference face
+            if (h <= 0.0f) {
+                out.points[static_cast<std::size_t>(out.count)] = p + v1;
+                out.depths[static_cast<std::size_t>(out.count)] = detail::clamp(-h, 0.0f, pc.manifold.depth);
+                ++out.count;
+            }
+        }
+    }
+    if (out.count == 2 && out.points[0] == out.points[1]) out.count = 1;
+    if (out.count == 0) {
+        // Rounding left no clipped end on or below the face (or the incident edge beside the
+        // reference edge): the incident vertex deepest along n stands for the contact.
+        int deepest = 0;
+        for (int i = 1; i < ni; ++i)
+            if (dot(n, inc.points[i] - inc.points[deepest]) < 0.0f) deepest = i;
+        out.points[0] = inc.points[deepest] + offset;
+        out.depths[0] = pc.manifold.depth;
+        out.count = 1;
+    }
+    return out;
+}
+
+// The contact set of a hit whose reference face pc names.
+ContactSet contacts_of(const PolygonContact& pc, Convex a, Convex b, Vec2 offset) {
+    if (pc.a_face) return clip_contacts(pc, a, b, offset);
+    // B's face is the reference: clip in B's shifted frame (A shifted by -offset), then back.
+    ContactSet c = clip_contacts(pc, b, a, -offset);
+    for (Vec2& p : c.points) p = p + offset;
+    c.manifold = pc.manifold;
+    return c;
+}
+}  // namespace
+
+ContactSet contacts(const Polygon& a, const Polygon& b) {
+    if (!valid(a) || !valid(b)) return {};
+    return contacts_of(polygon_polygon(convex(a), convex(b), {}), convex(a), convex(b), {});
+}
+
+ContactSet contacts(const Obb& a, const Obb& b) {
+    // The MTD of collide(a, b), then its face on the box that owns the axis: CentredBox's
+    // faces 0..3 have normals -y, +x, +y, -x of the box. Solved around A's centre, where both
+    // boxes' corners are precise; the points are moved back.
+    if (!valid(a) || !valid(b)) return {};
+    const Vec2 d = b.center - a.center;
+    const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), d);
+    if (!bb.manifold.hit) return {};
+    // A's face has the normal's direction; B's the opposite one.
+    const bool a_face = bb.axis < 2;
+    const bool outward_positive = a_face ? bb.positive : !bb.positive;
+    const int face = (bb.axis % 2 == 0) ? (outward_positive ? 1 : 3) : (outward_positive ? 2 : 0);
+    const CentredBox box_a(a), box_b(b);
+    ContactSet c = contacts_of(PolygonContact{bb.manifold, a_face, face}, box_a.view(), box_b.view(), d);
+    for (int k = 0; k < c.count; ++k) c.points[static_cast<std::size_t>(k)] += a.center;
+    return c;
+}
+
 Manifold collide(const Obb& a, const Obb& b) {
     if (!valid(a) || !valid(b)) return {};
-    return box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center);
+    return box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center).manifold;
 }
 
 Manifold collide(const Aabb& a, const Obb& b) {
@@ -99,26 +298,25 @@ Manifold collide(const Aabb& a, const Obb& b) {
     // the origin, so the offset is formed from differences instead.
     if (!valid(a) || !valid(b)) return {};
     const Vec2 half = (a.max - a.min) * 0.5f;
-    return box_box(half, Rot{}, b.half, b.rotation(), (b.center - a.min) - half);
+    return box_box(half, Rot{}, b.half, b.rotation(), (b.center - a.min) - half).manifold;
 }
 
 Manifold collide(const Polygon& a, const Polygon& b) {
     // 09-62: any convex shape, every edge normal of both.
     if (!valid(a) || !valid(b)) return {};
-    return detail::sat_collide(view_of(a), view_of(b));
+    return polygon_polygon(convex(a), convex(b), {}).manifold;
 }
 
 Manifold collide(const Obb& a, const Polygon& b) {
     // Solved around the box's centre, where its corners are precise: the polygon is viewed
     // shifted by -centre instead of being copied.
     if (!valid(a) || !valid(b)) return {};
-    const Polygon box = detail::centred_polygon(a);
-    return detail::sat_collide(view_of(box), view_of(b, -a.center));
+    return polygon_polygon(CentredBox(a).view(), convex(b), -a.center).manifold;
 }
 
 Manifold collide(const Aabb& a, const Polygon& b) {
     if (!valid(a) || !valid(b)) return {};
-    return collide(to_polygon(a), b);
+    return polygon_polygon(convex(to_polygon(a)), convex(b), {}).manifold;
 }
 
 Manifold collide(const Aabb& a, const Segment& b) {

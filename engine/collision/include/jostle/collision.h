@@ -62,7 +62,9 @@
 //   SAT box   09-58: the 2 + 2 edge normals of the boxes, projected radii, early exit
 //   SAT       09-62: every edge normal of both shapes (a segment adds its own direction,
 //             since it has no area), early exit on the first separating axis, MTD along
-//             the axis of least push (09-60)
+//             the axis of least push (09-60). For two polygons each edge normal is tested
+//             on its outward side only: those are the faces of the Minkowski difference,
+//             where the least push always lies
 //   clamp     09-102: closest point in the box by "push in"; a centre inside the box is
 //             pushed out through the nearest face
 //   closest   09-87/09-90: closest point on the boundary to the circle's centre; a centre
@@ -269,6 +271,19 @@ struct SweepHit {
     Vec2 normal;     // unit, from A (the moving circle) toward B at time t
 };
 
+// Where two overlapping polygons touch (for stacking, torque and debug drawing): the MTD
+// and up to 2 contact points, made by clipping the incident edge (the face of the other
+// shape most opposed to the MTD's face) to the MTD's face, as Box2D and most engines do.
+// Each point lies on the incident shape's boundary, depths[k] (in [0, manifold.depth]) below
+// the reference face. A miss has count 0; a hit has 1 or 2 points (2 when edges lie flat on
+// each other).
+struct ContactSet {
+    Manifold manifold;
+    int count = 0;
+    std::array<Vec2, 2> points{};
+    std::array<float, 2> depths{};
+};
+
 struct ClosestPoint {
     Vec2 point;             // the point of the closed shape nearest to the query
     float distance = 0.0f;  // 0 when the query point is inside
@@ -311,6 +326,9 @@ Manifold collide(const Obb& a, const Polygon& b);
 Manifold collide(const Polygon& a, const Polygon& b);
 Manifold collide(const Aabb& a, const Segment& b);
 Manifold collide(const Obb& a, const Segment& b);
+// The MTD (the same as collide) with the contact points; see ContactSet.
+ContactSet contacts(const Obb& a, const Obb& b);
+ContactSet contacts(const Polygon& a, const Polygon& b);
 Manifold collide(const Polygon& a, const Segment& b);
 Manifold collide(const Segment& a, const Segment& b);
 
