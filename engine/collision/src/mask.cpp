@@ -26,8 +26,6 @@ using u64 = std::uint64_t;
 
 bool usable(const Mask* m) { return m != nullptr && m->width() > 0 && m->height() > 0; }
 
-u64 low_bits(int n) { return n >= 64 ? ~u64{0} : (u64{1} << n) - 1; }
-
 std::string describe_char(char ch) {
     const auto byte = static_cast<unsigned char>(ch);
     if (byte >= 0x20 && byte < 0x7f) return std::string("'") + ch + "'";
@@ -125,16 +123,6 @@ namespace {
 // Bit-level helpers
 // ---------------------------------------------------------------------------------------
 
-// 64 pixels of a row starting at pixel `start` (>= 0): bit k is pixel start + k. Pixels past
-// the row read as clear and words past the row are never read (the sanitizer build checks).
-u64 bits_at(const u64* row, int words, i64 start) {
-    const i64 k = start >> 6;
-    const int shift = static_cast<int>(start & 63);
-    u64 out = k < words ? row[k] >> shift : 0;
-    if (shift != 0 && k + 1 < words) out |= row[k + 1] << (64 - shift);
-    return out;
-}
-
 // The set pixels' rectangle, in the mask's own pixels, inclusive; x1 < x0 when none is set.
 struct PixelBox {
     int x0 = 0;
@@ -191,34 +179,205 @@ struct Placed {
 Placed placed(const PlacedMask& p) { return {p.mask, p.x, p.y}; }
 
 // 09-30: AND the two masks over the intersection of their rectangles only, 64 pixels per
-// word: one mask starts at its column 0 there and is read word-aligned, the other is shifted
-// into place. visit(world y, world x of bit 0, word) gets every non-zero word, rows top to
-// bottom (bottom to top when `upward`), words left to right; returning true stops the walk.
-template <class Visit>
-bool visit_shared_words(const Placed& a, const Placed& b, bool upward, Visit&& visit) {
+// AND. Everything that does not change from row to row is worked out once per query here
+// (for small masks that per-query work is most of the cost): one mask, "A", is read
+// word-aligned over the words that hold shared columns; the 64 pixels of the other, "B",
+// under A's word i of a row are two adjacent B words joined by a shift that is the same for
+// every word of every row. Pixels outside B read as clear: past B's width its bits are clear,
+// and before B's column 0 (or past its last word) the word is read at a clamped index and
+// masked to 0, so the loops have no bounds tests and never read outside a row.
+// "A" and "B" here are the aligned and the shifted mask: share_words picks which query
+// argument plays which part. No default values: share_words sets every field (zeroing the
+// struct first cost as much as a row's work).
+struct SharedWords {
+    const u64* a;         // A's first word holding a shared column, in the first shared row
+    const u64* b;         // word 0 of B's first shared row
+    int a_stride;         // A's words per row
+    int b_stride;         // B's words per row
+    int rows;             // shared rows, >= 1
+    int words;            // A words per shared row, >= 1
+    int q;                // the B word holding the pixel under bit 0 of A's first word; -1 if left of B
+    int shift;            // that pixel's bit in B word q
+    int first_lo;         // the low B word of A's word 0: word q clamped into the row, and
+    u64 first_lo_keep;    //   ~0, or 0 when q = -1 lies outside it
+    int last_hi;          // the high B word of A's last word: word q + words clamped, and
+    u64 last_hi_keep;     //   ~0, or 0 when it lies past the row
+    i64 x;                // world pixel of bit 0 of A's first word
+    i64 y;                // world row of the first shared row
+};
+
+// Sets s up for the pair; false when the rectangles share no pixel.
+[[gnu::always_inline]] inline bool share_words(const Placed& a, const Placed& b, SharedWords& s) {
     const i64 x0 = std::max(a.x, b.x);
     const i64 x1 = std::min(a.x + a.m->width(), b.x + b.m->width());
     const i64 y0 = std::max(a.y, b.y);
     const i64 y1 = std::min(a.y + a.m->height(), b.y + b.m->height());
     if (x0 >= x1 || y0 >= y1) return false;
-    const i64 len = x1 - x0;
-    const i64 sa = x0 - a.x;
-    const i64 sb = x0 - b.x;
-    const i64 chunks = (len + 63) / 64;
-    const u64 last_mask = low_bits(static_cast<int>(len - (chunks - 1) * 64));
-    const int wa = a.m->words_per_row();
-    const int wb = b.m->words_per_row();
-    for (i64 n = 0; n < y1 - y0; ++n) {
-        const i64 y = upward ? y1 - 1 - n : y0 + n;
-        const u64* ra = a.m->row(static_cast<int>(y - a.y));
-        const u64* rb = b.m->row(static_cast<int>(y - b.y));
-        for (i64 c = 0; c < chunks; ++c) {
-            u64 w = bits_at(ra, wa, sa + 64 * c) & bits_at(rb, wb, sb + 64 * c);
-            if (c == chunks - 1) w &= last_mask;  // bits past a width are clear; this is belt and braces
-            if (w != 0 && visit(y, x0 + 64 * c, w)) return true;
+    // Read word-aligned whichever mask spans fewer words over the shared columns (the AND
+    // does not care which one is shifted): fewer words per row.
+    const i64 a_words = ((x1 - 1 - a.x) >> 6) - ((x0 - a.x) >> 6);
+    const i64 b_words = ((x1 - 1 - b.x) >> 6) - ((x0 - b.x) >> 6);
+    const Placed& p = b_words < a_words ? b : a;  // read aligned
+    const Placed& o = b_words < a_words ? a : b;  // shifted
+    const int k0 = static_cast<int>((x0 - p.x) >> 6);
+    // The shared columns lie inside both masks, so these differences are small.
+    const int d = static_cast<int>(p.x + 64 * k0 - o.x);  // o's column under bit 0 of word k0, > -64
+    const int wo = o.m->words_per_row();
+    s.a_stride = p.m->words_per_row();
+    s.b_stride = wo;
+    s.a = p.m->row(static_cast<int>(y0 - p.y)) + k0;
+    s.b = o.m->row(static_cast<int>(y0 - o.y));
+    s.rows = static_cast<int>(y1 - y0);
+    s.words = static_cast<int>(std::min(a_words, b_words)) + 1;
+    s.q = d >> 6;  // floor: -1 when word k0 starts left of o
+    s.shift = d & 63;
+    s.first_lo = std::max(s.q, 0);
+    s.first_lo_keep = s.q >= 0 ? ~u64{0} : 0;
+    s.last_hi = std::min(s.q + s.words, wo - 1);
+    s.last_hi_keep = s.q + s.words < wo ? ~u64{0} : 0;
+    s.x = p.x + 64 * k0;
+    s.y = y0;
+    return true;
+}
+
+// 64 pixels starting at bit `shift` of lo and running on into hi. hi << 1 << (63 - shift)
+// rather than hi << (64 - shift): a shift by 64 is undefined, and for shift 0 this gives 0.
+inline u64 join(u64 lo, u64 hi, int shift) { return (lo >> shift) | ((hi << 1) << (63 - shift)); }
+
+// One shared row: f(i, word i of A AND the B pixels under it) for i = 0..words-1, left to
+// right, until f returns true. ra and rb are offsets of the row in s.a and s.b. kOneWord: the
+// caller knows words == 1 (always so for masks up to 64 wide), which drops the loop. Always
+// inlined, so that a popcount in f compiles for the kernel's target (count_shared).
+template <bool kOneWord, class F>
+[[gnu::always_inline]] inline bool for_row_words(const SharedWords& s, std::ptrdiff_t ra, std::ptrdiff_t rb, F&& f) {
+    const u64* a = s.a + ra;
+    const u64* b = s.b + rb;
+    u64 lo = b[s.first_lo] & s.first_lo_keep;
+    int i = 0;
+    if constexpr (!kOneWord) {
+        for (; i + 1 < s.words; ++i) {  // inner words: both B words lie inside the row
+            const u64 hi = b[s.q + i + 1];
+            if (f(i, a[i] & join(lo, hi, s.shift))) return true;
+            lo = hi;
         }
     }
+    return f(i, a[i] & join(lo, b[s.last_hi] & s.last_hi_keep, s.shift));
+}
+
+// The OR of a row's shared words: non-zero when the row has a shared pixel.
+template <bool kOneWord>
+[[gnu::always_inline]] inline u64 row_any(const SharedWords& s, std::ptrdiff_t ra, std::ptrdiff_t rb) {
+    u64 any = 0;
+    for_row_words<kOneWord>(s, ra, rb, [&](int, u64 w) {
+        any |= w;
+        return false;
+    });
+    return any;
+}
+
+// Rows are tested kBlock at a time with one branch per block, then one at a time: where the
+// first shared row falls is random, and a branch per row is mispredicted about once a query,
+// which costs as much as the AND work of small masks.
+constexpr int kBlock = 4;
+
+// Bit k set: row r0 + k has a shared pixel (rows r0 .. r0 + kBlock - 1 exist).
+template <bool kOneWord>
+[[gnu::always_inline]] inline unsigned block_flags(const SharedWords& s, int r0) {
+    unsigned flags = 0;
+    for (int k = 0; k < kBlock; ++k)
+        flags |= static_cast<unsigned>(row_any<kOneWord>(s, std::ptrdiff_t{r0 + k} * s.a_stride,
+                                                         std::ptrdiff_t{r0 + k} * s.b_stride) != 0)
+                 << k;
+    return flags;
+}
+
+// The first row at or after r0 with a shared pixel, or s.rows.
+template <bool kOneWord>
+[[gnu::always_inline]] inline int first_row_from(const SharedWords& s, int r) {
+    for (; r + kBlock <= s.rows; r += kBlock)
+        if (const unsigned flags = block_flags<kOneWord>(s, r); flags != 0) return r + std::countr_zero(flags);
+    for (; r < s.rows; ++r)
+        if (row_any<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride) != 0) return r;
+    return s.rows;
+}
+
+// Yes/no needs no row number: the rows of a block are simply ORed.
+template <bool kOneWord>
+bool any_shared_in(const SharedWords& s) {
+    int r = 0;
+    for (; r + kBlock <= s.rows; r += kBlock) {
+        u64 any = 0;
+        for (int k = 0; k < kBlock; ++k)
+            any |= row_any<kOneWord>(s, std::ptrdiff_t{r + k} * s.a_stride, std::ptrdiff_t{r + k} * s.b_stride);
+        if (any != 0) return true;
+    }
+    for (; r < s.rows; ++r)
+        if (row_any<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride) != 0) return true;
     return false;
+}
+
+bool any_shared(const SharedWords& s) { return s.words == 1 ? any_shared_in<true>(s) : any_shared_in<false>(s); }
+
+struct WorldPixel {
+    i64 x = 0;
+    i64 y = 0;
+};
+
+// The first shared pixel of row r, known to have one.
+template <bool kOneWord>
+WorldPixel first_in_row(const SharedWords& s, int r) {
+    WorldPixel out{0, s.y + r};
+    for_row_words<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride, [&](int i, u64 w) {
+        out.x = s.x + 64 * i + std::countr_zero(w);
+        return w != 0;
+    });
+    return out;
+}
+
+// The first shared pixel, rows top to bottom (bottom to top when `upward`, for the MTD
+// search; not worth blocks there), left to right.
+std::optional<WorldPixel> first_shared(const SharedWords& s, bool upward) {
+    if (upward) {
+        for (int r = s.rows - 1; r >= 0; --r)
+            if (row_any<false>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride) != 0)
+                return first_in_row<false>(s, r);
+        return std::nullopt;
+    }
+    if (s.words == 1) {
+        const int r = first_row_from<true>(s, 0);
+        return r < s.rows ? std::optional(first_in_row<true>(s, r)) : std::nullopt;
+    }
+    const int r = first_row_from<false>(s, 0);
+    return r < s.rows ? std::optional(first_in_row<false>(s, r)) : std::nullopt;
+}
+
+// Counting needs a popcount per word. Baseline x86-64 has no POPCNT instruction, so
+// std::popcount there is a call into libgcc (__popcountdi2); the flags that would enable it
+// (-march=...) apply to a whole file and would let the compiler change floating-point code
+// too (FMA), which the determinism rule forbids. So the integer-only kernel is compiled
+// twice: for the popcnt target, chosen at run time when the CPU has it, and as is.
+template <bool kOneWord>
+[[gnu::always_inline]] inline int count_in_rows(const SharedWords& s) {
+    int n = 0;
+    for (int r = 0; r < s.rows; ++r)
+        for_row_words<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride, [&](int, u64 w) {
+            n += std::popcount(w);
+            return false;
+        });
+    return n;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+[[gnu::target("popcnt")]] int count_shared_popcnt(const SharedWords& s) {
+    return s.words == 1 ? count_in_rows<true>(s) : count_in_rows<false>(s);
+}
+#endif
+
+int count_shared(const SharedWords& s) {
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (__builtin_cpu_supports("popcnt")) return count_shared_popcnt(s);
+#endif
+    return s.words == 1 ? count_in_rows<true>(s) : count_in_rows<false>(s);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -339,17 +498,13 @@ struct MaskPairProblem {
         if (ax + box_a.x0 > b.x + box_b.x1 || ax + box_a.x1 < b.x + box_b.x0 ||
             ay + box_a.y0 > b.y + box_b.y1 || ay + box_a.y1 < b.y + box_b.y0)
             return false;
-        i64 wx = 0;
-        i64 wy = 0;
-        const bool hit = visit_shared_words(Placed{a.m, ax, ay}, b, dir < 0, [&](i64 y, i64 x, u64 w) {
-            wx = x + std::countr_zero(w);
-            wy = y;
-            return true;
-        });
-        if (!hit) return false;
-        // A's pixel on (wx, wy) stays on B's pixels while B's column runs on in the scan direction.
-        const int bx = static_cast<int>(wx - b.x);
-        const int by = static_cast<int>(wy - b.y);
+        SharedWords s;
+        if (!share_words(Placed{a.m, ax, ay}, b, s)) return false;
+        const auto witness = first_shared(s, dir < 0);
+        if (!witness) return false;
+                // A's pixel on (wx, wy) stays on B's pixels while B's column runs on in the scan direction.
+        const int bx = static_cast<int>(witness->x - b.x);
+        const int by = static_cast<int>(witness->y - b.y);
         int run = 1;
         while (b.m->get(bx, by + dir * run)) ++run;
         jump = run;
@@ -838,29 +993,24 @@ Manifold collide_region(const PlacedMask& a, const std::optional<R>& r) {
 // Mask vs mask (bit-packed)
 // ---------------------------------------------------------------------------------------
 
+// A 0-wide or 0-high mask shares no pixel: share_words finds that without a test of its own.
 bool overlaps(const PlacedMask& a, const PlacedMask& b) {
-    if (!usable(a.mask) || !usable(b.mask)) return false;
-    return visit_shared_words(placed(a), placed(b), false, [](i64, i64, u64) { return true; });
+    SharedWords s;
+    return a.mask != nullptr && b.mask != nullptr && share_words(placed(a), placed(b), s) && any_shared(s);
 }
 
 std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b) {
-    if (!usable(a.mask) || !usable(b.mask)) return std::nullopt;
-    std::optional<Pixel> out;
-    visit_shared_words(placed(a), placed(b), false, [&](i64 y, i64 x, u64 w) {
-        out = Pixel{static_cast<int>(x + std::countr_zero(w)), static_cast<int>(y)};
-        return true;
-    });
-    return out;
+    SharedWords s;
+    if (a.mask == nullptr || b.mask == nullptr || !share_words(placed(a), placed(b), s)) return std::nullopt;
+    const auto p = first_shared(s, false);
+    if (!p) return std::nullopt;
+    return Pixel{static_cast<int>(p->x), static_cast<int>(p->y)};
 }
 
 int count_overlap(const PlacedMask& a, const PlacedMask& b) {
-    if (!usable(a.mask) || !usable(b.mask)) return 0;
-    int n = 0;
-    visit_shared_words(placed(a), placed(b), false, [&](i64, i64, u64 w) {
-        n += std::popcount(w);
-        return false;
-    });
-    return n;
+    SharedWords s;
+    if (a.mask == nullptr || b.mask == nullptr || !share_words(placed(a), placed(b), s)) return 0;
+    return count_shared(s);
 }
 
 Manifold collide(const PlacedMask& a, const PlacedMask& b) {

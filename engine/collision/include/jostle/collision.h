@@ -88,7 +88,8 @@
 //   order: smallest y, then smallest x), count_overlap, collide (integer MTD), the same
 //   against an Aabb, and reference::* (the lecture's brute-force loop, 09-3, corrected).
 //   The bit-packed path keeps 64 pixels in a word and compares a word per AND; it gives the
-//   same answers as the reference loop.
+//   same answers as the reference loop. count_overlap uses the CPU's POPCNT instruction when
+//   it has one (checked at run time), with the same results either way.
 //
 // TOLERANCES
 //   Touching is decided on the computed values with no epsilon: shapes that touch exactly
