@@ -1,8 +1,15 @@
 // png_io_test.cpp: read_png on every colour type in tests/data (made by make_pngs.py)
 // and on broken files, and write_png_atomic: round trips, overwrites, no temporary files
-// left behind, errors naming the path.
+// left behind, errors naming the path; jostle's fast encoder (PngEncoder::fast): round trips
+// through libpng and through a decoder written here (zlib's inflate and the PNG filters undone
+// by hand), the same bytes whatever the thread count.
+#include <zlib.h>
+
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -175,6 +182,155 @@ TEST_F(WritePng, MalformedImageIsAProgrammingError) {
     EXPECT_DEATH(write_png_atomic(path, Image{2, 2, {}}), "rgba.size");
     EXPECT_DEATH(write_png_atomic(path, Image{}), "image sides");
     EXPECT_DEATH(write_png_atomic(path, pattern_image(1, 1, 0), 10), "compression level");
+}
+
+
+// ---------------------------------------------------------------------------------------
+// The fast encoder
+// ---------------------------------------------------------------------------------------
+
+// Images the encoder's paths meet: noise (stored blocks), flat colour (long runs), a frame-like
+// picture (flat background, patches, soft gradients) and a repeated tile (matches far back).
+Image fast_test_image(int width, int height, int kind, std::uint32_t seed) {
+    Image image = pattern_image(width, height, seed);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            std::uint8_t* p = image.rgba.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4;
+            const std::uint8_t noise = p[0];
+            switch (kind) {
+                case 0: break;  // noise
+                case 1: p[0] = 38; p[1] = 42; p[2] = 54; p[3] = 255; break;
+                case 2: {
+                    const bool patch = ((x / 13 + y / 7) % 5) == 0;
+                    p[0] = patch ? static_cast<std::uint8_t>(x * 3) : 38;
+                    p[1] = patch ? static_cast<std::uint8_t>(y * 5 + (noise & 3)) : 42;
+                    p[2] = patch ? static_cast<std::uint8_t>(x + y) : 54;
+                    p[3] = patch ? static_cast<std::uint8_t>(128 + (x & 127)) : 255;
+                    break;
+                }
+                default: {
+                    const std::uint32_t v = static_cast<std::uint32_t>((x % 24) * 2654435761u + (y % 24) * 40503u);
+                    p[0] = static_cast<std::uint8_t>(v >> 24); p[1] = static_cast<std::uint8_t>(v >> 16);
+                    p[2] = static_cast<std::uint8_t>(v >> 8); p[3] = static_cast<std::uint8_t>(v);
+                    break;
+                }
+            }
+        }
+    }
+    return image;
+}
+
+std::uint32_t be32(const std::uint8_t* p) {
+    return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
+}
+
+// A PNG decoder for 8-bit RGBA files written from the PNG spec, not from either encoder:
+// chunk CRCs checked, IDATs joined and inflated by zlib (which checks the Adler-32), each row's
+// filter undone by hand.
+Image decode_by_hand(const std::vector<std::uint8_t>& png) {
+    const std::uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    EXPECT_EQ(std::memcmp(png.data(), signature, 8), 0);
+    std::size_t at = 8;
+    Image image;
+    std::vector<std::uint8_t> zdata;
+    bool ended = false;
+    while (at + 12 <= png.size() && !ended) {
+        const std::uint32_t length = be32(png.data() + at);
+        const std::string type(reinterpret_cast<const char*>(png.data() + at + 4), 4);
+        const std::uint8_t* data = png.data() + at + 8;
+        EXPECT_EQ(crc32(0, png.data() + at + 4, length + 4), be32(data + length)) << type;
+        if (type == "IHDR") {
+            image.width = static_cast<int>(be32(data));
+            image.height = static_cast<int>(be32(data + 4));
+            EXPECT_EQ(std::vector<std::uint8_t>(data + 8, data + 13), bytes({8, 6, 0, 0, 0}));
+        } else if (type == "IDAT") {
+            zdata.insert(zdata.end(), data, data + length);
+        } else if (type == "IEND") {
+            ended = true;
+        }
+        at += 12 + length;
+    }
+    EXPECT_TRUE(ended);
+    EXPECT_EQ(at, png.size());
+    const std::size_t row = static_cast<std::size_t>(image.width) * 4;
+    std::vector<std::uint8_t> raw((row + 1) * static_cast<std::size_t>(image.height));
+    uLongf raw_size = static_cast<uLongf>(raw.size());
+    EXPECT_EQ(uncompress(raw.data(), &raw_size, zdata.data(), static_cast<uLong>(zdata.size())), Z_OK);
+    EXPECT_EQ(raw_size, raw.size());
+    image.rgba.assign(row * static_cast<std::size_t>(image.height), 0);
+    for (std::size_t y = 0; y < static_cast<std::size_t>(image.height); ++y) {
+        const std::uint8_t type = raw[y * (row + 1)];
+        const std::uint8_t* in = raw.data() + y * (row + 1) + 1;
+        std::uint8_t* out = image.rgba.data() + y * row;
+        const std::uint8_t* up = y > 0 ? out - row : nullptr;
+        for (std::size_t i = 0; i < row; ++i) {
+            const int a = i >= 4 ? out[i - 4] : 0;
+            const int b = up ? up[i] : 0;
+            const int c = (up && i >= 4) ? up[i - 4] : 0;
+            int predicted = 0;
+            if (type == 1) predicted = a;
+            if (type == 2) predicted = b;
+            if (type == 3) predicted = (a + b) / 2;
+            if (type == 4) {
+                const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+                predicted = (pa <= pb && pa <= pc) ? a : (pb <= pc ? b : c);
+            }
+            EXPECT_LE(type, 4);
+            out[i] = static_cast<std::uint8_t>(in[i] + predicted);
+        }
+    }
+    return image;
+}
+
+TEST(FastPng, RoundTripsEveryFilterSizeAndKindOfPicture) {
+    const std::pair<int, int> sizes[] = {{1, 1}, {2, 3}, {5, 1}, {1, 7}, {37, 23}, {300, 700}, {1030, 5}};
+    const PngFilter filters[] = {PngFilter::up, PngFilter::none, PngFilter::sub, PngFilter::paeth, PngFilter::adaptive,
+                                 PngFilter::libpng_default};
+    for (const auto& [w, h] : sizes) {
+        for (int kind = 0; kind < 4; ++kind) {
+            const Image image = fast_test_image(w, h, kind, static_cast<std::uint32_t>(w * 31 + h));
+            for (const PngFilter filter : filters) {
+                const std::vector<std::uint8_t> png = encode_png(image, PngEncoding{.filter = filter});
+                const Image back = decode_png(png, "fast");
+                EXPECT_EQ(back.width, w);
+                EXPECT_EQ(back.height, h);
+                EXPECT_EQ(back.rgba, image.rgba) << w << "x" << h << " kind " << kind << " filter " << static_cast<int>(filter);
+                EXPECT_EQ(decode_by_hand(png).rgba, image.rgba) << w << "x" << h << " kind " << kind;
+            }
+        }
+    }
+}
+
+TEST(FastPng, SameBytesWhateverTheThreadCount) {
+    // 300 px wide: several strips of rows.
+    for (int kind = 0; kind < 4; ++kind) {
+        const Image image = fast_test_image(300, 700, kind, 5);
+        const std::vector<std::uint8_t> one = encode_png(image);
+        for (int threads : {2, 3, 16}) EXPECT_EQ(encode_png(image, PngEncoding{.threads = threads}), one) << threads;
+        EXPECT_EQ(encode_png(image), one);
+    }
+}
+
+TEST(FastPng, CompressesWhatRepeatsAndStoresNoise) {
+    const Image flat = fast_test_image(640, 480, 1, 1);
+    EXPECT_LT(encode_png(flat).size(), flat.rgba.size() / 200);
+    const Image tile = fast_test_image(640, 480, 3, 1);
+    EXPECT_LT(encode_png(tile).size(), tile.rgba.size() / 10);
+    // Noise does not compress: stored blocks, a little over the raw size.
+    const Image noise = fast_test_image(640, 480, 0, 1);
+    const std::size_t filtered = noise.rgba.size() + 480;
+    EXPECT_GE(encode_png(noise).size(), filtered);
+    EXPECT_LT(encode_png(noise).size(), filtered + filtered / 1000 + 200);
+}
+
+TEST_F(WritePng, DefaultIsTheFastEncoder) {
+    const Image image = fast_test_image(64, 48, 2, 3);
+    const std::string path = folder_.file("frame.png");
+    write_png_atomic(path, image);
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<std::uint8_t> file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    EXPECT_EQ(file, encode_png(image));
+    EXPECT_EQ(read_png(path).rgba, image.rgba);
 }
 
 }  // namespace

@@ -242,7 +242,7 @@ int main(int argc, char** argv) {
             const std::string path = std::string(argv[1]) + "/" + s.name + ".png";
             // Best compression: these files are committed.
             const std::vector<std::uint8_t> png =
-                jostle::encode_png(render(s.width, s.height, s.paint), jostle::PngEncoding{.compression_level = 9});
+                jostle::encode_png(render(s.width, s.height, s.paint), jostle::PngEncoding{.encoder = jostle::PngEncoder::libpng, .compression_level = 9});
             jostle::write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
             std::printf("%s (%dx%d)\n", path.c_str(), s.width, s.height);
         }

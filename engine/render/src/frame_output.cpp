@@ -123,7 +123,7 @@ struct FrameWriter::Impl {
             lock.unlock();
             std::exception_ptr failure;
             try {
-                write_png_atomic(path, image, desc.compression_level);
+                write_png_atomic(path, image, desc.encoding);
             } catch (...) {
                 failure = std::current_exception();
             }

@@ -2,6 +2,7 @@
 // no window and no GPU. An OpenGL 3.3 core context, one shader, one vertex buffer, the atlas as
 // one texture: a frame is one glDrawArrays. The only file that includes GL/OSMesa headers.
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -64,7 +65,7 @@ public:
                                OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
         context_ = OSMesaCreateContextAttribs(attribs, nullptr);
         if (context_ == nullptr) throw std::runtime_error("OSMesa backend: cannot create an OpenGL 3.3 core context");
-        resize(1, 1);
+        bind(first_buffer_.data(), 1, 1);  // a context needs a buffer before it compiles shaders
         const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
         const GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
         program_ = glCreateProgram();
@@ -103,7 +104,11 @@ public:
     }
 
     int render(const Frame& frame, Image& out) override {
-        resize(frame.width, frame.height);
+        // OSMesa renders into the image's own pixels: no copy of ours after glFinish.
+        out.width = frame.width;
+        out.height = frame.height;
+        out.rgba.resize(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 4u);
+        bind(out.rgba.data(), frame.width, frame.height);
         glViewport(0, 0, frame.width, frame.height);
         // The framebuffer holds premultiplied colour (see the blend below).
         const float clear_alpha = frame.clear.a / 255.0f;
@@ -133,48 +138,47 @@ public:
             glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(frame.vertices->size()));
             calls = 1;
         }
+        // glFinish waits for llvmpipe and has OSMesa copy the frame into `out` (bound above,
+        // top row first): that copy is the readback, the only one.
         glFinish();
-        // OSMesa's buffer starts at the bottom row; images start at the top.
-        out.width = frame.width;
-        out.height = frame.height;
-        const std::size_t row = static_cast<std::size_t>(frame.width) * 4u;
-        out.rgba.resize(row * static_cast<std::size_t>(frame.height));
-        for (int y = 0; y < frame.height; ++y) {
-            std::memcpy(out.rgba.data() + static_cast<std::size_t>(y) * row,
-                        buffer_.data() + static_cast<std::size_t>(frame.height - 1 - y) * row, row);
-        }
         unpremultiply(out.rgba);
         return calls;
     }
 
 private:
     // Premultiplied to straight RGBA, rounded; opaque pixels (the common case) stay as they
-    // are, fully transparent ones become (0, 0, 0, 0).
+    // are, fully transparent ones become (0, 0, 0, 0). Two pixels at a time are checked for
+    // being opaque, so opaque frames cost one pass of 8-byte loads.
     static void unpremultiply(std::vector<std::uint8_t>& rgba) {
-        for (std::size_t i = 0; i < rgba.size(); i += 4) {
-            const unsigned a = rgba[i + 3];
-            if (a == 255u) continue;
-            for (std::size_t c = 0; c < 3; ++c) {
-                rgba[i + c] = a == 0u ? 0 : static_cast<std::uint8_t>(std::min(255u, (rgba[i + c] * 255u + a / 2u) / a));
-            }
+        constexpr std::uint64_t kAlphas = 0xff000000ff000000u;  // little-endian RGBA: A is byte 3
+        std::size_t i = 0;
+        for (; i + 8 <= rgba.size(); i += 8) {
+            std::uint64_t two;
+            std::memcpy(&two, rgba.data() + i, 8);
+            if ((two & kAlphas) == kAlphas) continue;
+            unpremultiply_pixel(rgba.data() + i);
+            unpremultiply_pixel(rgba.data() + i + 4);
+        }
+        for (; i < rgba.size(); i += 4) unpremultiply_pixel(rgba.data() + i);
+    }
+    static void unpremultiply_pixel(std::uint8_t* p) {
+        const unsigned a = p[3];
+        if (a == 255u) return;
+        for (std::size_t c = 0; c < 3; ++c) {
+            p[c] = a == 0u ? 0 : static_cast<std::uint8_t>(std::min(255u, (p[c] * 255u + a / 2u) / a));
         }
     }
 
-    void resize(int width, int height) {
-        if (width != width_ || height != height_) {
-            buffer_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4u, 0);
-            width_ = width;
-            height_ = height;
-        }
-        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width, height)) {
+    // Makes the context current on `pixels` (width * height RGBA, top row first).
+    void bind(std::uint8_t* pixels, int width, int height) {
+        if (!OSMesaMakeCurrent(context_, pixels, GL_UNSIGNED_BYTE, width, height)) {
             throw std::runtime_error("OSMesa backend: cannot bind a " + std::to_string(width) + "x" + std::to_string(height) + " buffer");
         }
+        OSMesaPixelStore(OSMESA_Y_UP, 0);  // row 0 of the buffer is the image's top row
     }
 
     OSMesaContext context_ = nullptr;
-    std::vector<std::uint8_t> buffer_;
-    int width_ = 0;
-    int height_ = 0;
+    std::array<std::uint8_t, 4> first_buffer_{};
     GLuint program_ = 0;
     GLint viewport_uniform_ = -1;
     GLuint vao_ = 0;

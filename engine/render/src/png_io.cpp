@@ -1,5 +1,5 @@
 // png_io.cpp: reading any PNG as RGBA8 and encoding RGBA8 PNGs (in memory, then written
-// atomically by AtomicFile), with libpng.
+// atomically by AtomicFile), with libpng; PngEncoder::fast hands encoding to png_fast.cpp.
 // libpng reports errors by longjmp. Every setjmp sits in a small function whose frame holds
 // only trivially destructible objects, so a longjmp never skips a C++ destructor; whatever
 // owns memory or a file (PngRead, PngWrite) lives in the caller and cleans up there.
@@ -16,6 +16,7 @@
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
+#include "png_fast.h"
 
 namespace jostle {
 namespace {
@@ -234,6 +235,8 @@ std::vector<std::uint8_t> encode_png(const Image& image, const PngEncoding& enco
                   "encode_png: rgba.size() must be width * height * 4");
     JOSTLE_ASSERT(encoding.compression_level >= -1 && encoding.compression_level <= 9,
                   "encode_png: compression level must be in 0..9 (or -1, libpng's default)");
+    JOSTLE_ASSERT(encoding.threads >= 1 && encoding.threads <= 16, "encode_png: threads must be in 1..16");
+    if (encoding.encoder == PngEncoder::fast) return detail::encode_png_fast(image, encoding.filter, encoding.threads);
 
     std::vector<std::uint8_t> out;
     // Raw size plus a little: one reservation covers all but incompressible noise.
@@ -253,11 +256,15 @@ std::vector<std::uint8_t> encode_png(const Image& image, const PngEncoding& enco
     return out;
 }
 
+void write_png_atomic(const std::string& path, const Image& image, const PngEncoding& encoding) {
+    const std::vector<std::uint8_t> bytes = encode_png(image, encoding);
+    write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
 void write_png_atomic(const std::string& path, const Image& image, int compression_level) {
     JOSTLE_ASSERT(compression_level >= 0 && compression_level <= 9,
                   "write_png_atomic: compression level must be in 0..9");
-    const std::vector<std::uint8_t> bytes = encode_png(image, PngEncoding{.compression_level = compression_level});  // "up" filter
-    write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    write_png_atomic(path, image, PngEncoding{.encoder = PngEncoder::libpng, .compression_level = compression_level});
 }
 
 }  // namespace jostle

@@ -253,7 +253,7 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
         }
         for (const ImageCheck& image : c.images) {
             if (!image.golden_missing && image.compare.identical) continue;
-            const std::vector<std::uint8_t> png = encode_png(image.actual, PngEncoding{.compression_level = 9});
+            const std::vector<std::uint8_t> png = encode_png(image.actual, PngEncoding{.encoder = PngEncoder::libpng, .compression_level = 9});
             files.push_back(std::make_unique<AtomicFile>(image.golden_path));
             files.back()->write(png.data(), png.size());
             staged();

@@ -49,7 +49,7 @@ std::string frame_file_name(std::int64_t frame, std::string_view prefix = "frame
 
 struct FrameWriterDesc {
     std::string folder;          // created when missing
-    int compression_level = 1;   // zlib 0..9; 1 is fast and small enough for frames
+    PngEncoding encoding{};      // jostle's fast encoder, "up" filter, one thread (png_io.h)
     int max_queued = 4;          // frames waiting for the encoder before write() blocks
 };
 

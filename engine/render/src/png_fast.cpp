@@ -1,0 +1,640 @@
+// png_fast.cpp: jostle's fast PNG encoder (png_fast.h). The PNG format (RFC 2083) around a
+// deflate stream (RFC 1951) written here: per strip of rows, the filtered bytes are split into
+// literals and matches by a greedy LZ77 (a match at the previous pixel is tried first, then one
+// hash-table probe; no lazy matching, no chains: zlib's level 1 does a little more), then coded
+// in one dynamic Huffman block (or stored, when that is smaller). Strips are independent
+// (each ends on a byte boundary with an empty stored block, as zlib's Z_SYNC_FLUSH does), so
+// they can be compressed on several threads and concatenated; their Adler-32s are combined.
+// zlib provides only the checksums (crc32, adler32, adler32_combine).
+#include "png_fast.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <bit>
+#include <cstring>
+#include <memory>
+#include <thread>
+
+#include "jostle/core/error.h"
+
+namespace jostle::detail {
+
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// Filtering (PNG filter types 0..4, 4 bytes per pixel)
+// ---------------------------------------------------------------------------------------
+
+constexpr std::size_t kBpp = 4;
+
+std::uint8_t paeth(int a, int b, int c) {
+    const int p = a + b - c;
+    const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+    if (pa <= pb && pa <= pc) return static_cast<std::uint8_t>(a);
+    return static_cast<std::uint8_t>(pb <= pc ? b : c);
+}
+
+// One row filtered with `type` into out[0..n); `above` is null for the first row (zeros).
+void filter_row(int type, const std::uint8_t* row, const std::uint8_t* above, std::size_t n, std::uint8_t* out) {
+    switch (type) {
+        case 0:
+            std::memcpy(out, row, n);
+            return;
+        case 1:
+            for (std::size_t i = 0; i < kBpp; ++i) out[i] = row[i];
+            for (std::size_t i = kBpp; i < n; ++i) out[i] = static_cast<std::uint8_t>(row[i] - row[i - kBpp]);
+            return;
+        case 2:
+            if (above == nullptr) { std::memcpy(out, row, n); return; }
+            for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<std::uint8_t>(row[i] - above[i]);
+            return;
+        case 3:
+            for (std::size_t i = 0; i < n; ++i) {
+                const int left = i >= kBpp ? row[i - kBpp] : 0;
+                const int up = above != nullptr ? above[i] : 0;
+                out[i] = static_cast<std::uint8_t>(row[i] - ((left + up) >> 1));
+            }
+            return;
+        default:
+            for (std::size_t i = 0; i < n; ++i) {
+                const int left = i >= kBpp ? row[i - kBpp] : 0;
+                const int up = above != nullptr ? above[i] : 0;
+                const int corner = (i >= kBpp && above != nullptr) ? above[i - kBpp] : 0;
+                out[i] = static_cast<std::uint8_t>(row[i] - paeth(left, up, corner));
+            }
+            return;
+    }
+}
+
+// The sum of the filtered bytes as signed magnitudes: libpng's heuristic for "looks smallest".
+std::uint64_t row_cost(const std::uint8_t* f, std::size_t n) {
+    std::uint64_t sum = 0;
+    for (std::size_t i = 0; i < n; ++i) sum += f[i] < 128 ? f[i] : 256u - f[i];
+    return sum;
+}
+
+// Filters rows [y0, y1) into `out` (1 + row_bytes per row: the filter type, then the bytes).
+void filter_rows(const Image& image, PngFilter filter, int y0, int y1, std::uint8_t* out, std::vector<std::uint8_t>& scratch) {
+    const std::size_t n = static_cast<std::size_t>(image.width) * kBpp;
+    for (int y = y0; y < y1; ++y) {
+        const std::uint8_t* row = image.rgba.data() + static_cast<std::size_t>(y) * n;
+        const std::uint8_t* above = y > 0 ? row - n : nullptr;
+        std::uint8_t* dst = out + static_cast<std::size_t>(y - y0) * (n + 1);
+        int type = 2;
+        switch (filter) {
+            case PngFilter::none: type = 0; break;
+            case PngFilter::sub: type = 1; break;
+            case PngFilter::up: type = 2; break;
+            case PngFilter::paeth: type = 4; break;
+            case PngFilter::adaptive:
+            case PngFilter::libpng_default: {
+                // Each of the five filters into scratch; keep the one with the smallest cost.
+                scratch.resize(5 * n);
+                std::uint64_t best = UINT64_MAX;
+                for (int t = 0; t < 5; ++t) {
+                    filter_row(t, row, above, n, scratch.data() + static_cast<std::size_t>(t) * n);
+                    const std::uint64_t cost = row_cost(scratch.data() + static_cast<std::size_t>(t) * n, n);
+                    if (cost < best) { best = cost; type = t; }
+                }
+                dst[0] = static_cast<std::uint8_t>(type);
+                std::memcpy(dst + 1, scratch.data() + static_cast<std::size_t>(type) * n, n);
+                continue;
+            }
+        }
+        dst[0] = static_cast<std::uint8_t>(type);
+        filter_row(type, row, above, n, dst + 1);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Deflate tables (RFC 1951, 3.2.5)
+// ---------------------------------------------------------------------------------------
+
+constexpr int kLitLenSymbols = 286;
+constexpr int kDistSymbols = 30;
+constexpr int kMinMatch = 4;
+constexpr int kMaxMatch = 258;
+constexpr std::uint32_t kWindow = 32768;
+
+constexpr std::array<std::uint16_t, 29> kLenBase = {3,  4,  5,  6,  7,  8,  9,  10, 11,  13,  15,  17,  19,  23, 27,
+                                                    31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
+constexpr std::array<std::uint8_t, 29> kLenExtra = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
+                                                    2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
+constexpr std::array<std::uint16_t, 30> kDistBase = {1,   2,   3,   4,   5,   7,    9,    13,   17,   25,   33,   49,   65,    97,    129,
+                                                     193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
+constexpr std::array<std::uint8_t, 30> kDistExtra = {0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6,
+                                                     6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
+// The order in which the code-length code's lengths are sent.
+constexpr std::array<std::uint8_t, 19> kClOrder = {16, 17, 18, 0, 8, 7, 9, 6, 10, 5, 11, 4, 12, 3, 13, 2, 14, 1, 15};
+
+// Length 3..258 -> length code index 0..28.
+constexpr std::array<std::uint8_t, 259> kLenCode = [] {
+    std::array<std::uint8_t, 259> t{};
+    for (int c = 0; c < 29; ++c) {
+        const int last = c + 1 < 29 ? kLenBase[static_cast<std::size_t>(c) + 1] - 1 : 258;
+        for (int len = kLenBase[static_cast<std::size_t>(c)]; len <= last && len <= 258; ++len) t[static_cast<std::size_t>(len)] = static_cast<std::uint8_t>(c);
+    }
+    t[258] = 28;
+    return t;
+}();
+
+// Distance 1..32768 -> distance code 0..29.
+inline int dist_code(std::uint32_t dist) {
+    const std::uint32_t x = dist - 1;
+    if (x < 4) return static_cast<int>(x);
+    const int top = std::bit_width(x) - 1;  // x >= 4: top >= 2
+    return 2 * top + static_cast<int>((x >> (top - 1)) & 1u);
+}
+
+// ---------------------------------------------------------------------------------------
+// Huffman codes
+// ---------------------------------------------------------------------------------------
+
+// Code lengths (at most `limit` bits) for `n` symbols with frequencies `freq`; unused symbols get
+// 0. At least two symbols always get a code, so every code is complete (some decoders reject
+// a code of one symbol).
+void huffman_lengths(const std::uint32_t* freq_in, int n, int limit, std::uint8_t* lengths) {
+    std::array<std::uint32_t, 288> freq{};
+    std::copy_n(freq_in, n, freq.begin());
+    int used = 0;
+    for (int i = 0; i < n; ++i) used += freq[static_cast<std::size_t>(i)] != 0;
+    for (int i = 0; used < 2 && i < n; ++i) {
+        if (freq[static_cast<std::size_t>(i)] == 0) { freq[static_cast<std::size_t>(i)] = 1; ++used; }
+    }
+    // Leaves sorted by (frequency, symbol): deterministic.
+    std::array<std::pair<std::uint32_t, int>, 288> leaves{};
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+        lengths[i] = 0;
+        if (freq[static_cast<std::size_t>(i)] != 0) leaves[static_cast<std::size_t>(m++)] = {freq[static_cast<std::size_t>(i)], i};
+    }
+    std::sort(leaves.begin(), leaves.begin() + m);
+    // Two-queue Huffman construction: leaves in order, internal nodes in order of creation.
+    std::array<std::uint64_t, 288> weight{};  // internal node weights
+    std::array<int, 2 * 288> parent{};        // leaves 0..m-1, internal nodes m..2m-2
+    int leaf = 0, inner = 0, made = 0;
+    auto take = [&]() -> int {
+        if (leaf < m && (inner >= made || leaves[static_cast<std::size_t>(leaf)].first <= weight[static_cast<std::size_t>(inner)])) {
+            return leaf++;
+        }
+        return m + inner++;
+    };
+    auto weight_of = [&](int node) -> std::uint64_t {
+        return node < m ? leaves[static_cast<std::size_t>(node)].first : weight[static_cast<std::size_t>(node - m)];
+    };
+    while (made < m - 1) {
+        const int a = take();
+        const int b = take();
+        weight[static_cast<std::size_t>(made)] = weight_of(a) + weight_of(b);
+        parent[static_cast<std::size_t>(a)] = m + made;
+        parent[static_cast<std::size_t>(b)] = m + made;
+        ++made;
+    }
+    // Depths: the root (the last internal node) is 0; parents come after their children.
+    std::array<int, 2 * 288> depth{};
+    const int root = m + made - 1;
+    depth[static_cast<std::size_t>(root)] = 0;
+    for (int node = root - 1; node >= 0; --node) depth[static_cast<std::size_t>(node)] = depth[static_cast<std::size_t>(parent[static_cast<std::size_t>(node)])] + 1;
+    std::array<int, 2 * 288> count{};  // leaves per depth
+    int deepest = 0;
+    for (int i = 0; i < m; ++i) {
+        ++count[static_cast<std::size_t>(depth[static_cast<std::size_t>(i)])];
+        deepest = std::max(deepest, depth[static_cast<std::size_t>(i)]);
+    }
+    if (deepest > limit) {
+        // Too deep: move the overlong leaves up to `limit`, then split shorter leaves until
+        // the code is complete again (Kraft sum exactly 1), as miniz does.
+        for (int d = limit + 1; d <= deepest; ++d) {
+            count[static_cast<std::size_t>(limit)] += count[static_cast<std::size_t>(d)];
+            count[static_cast<std::size_t>(d)] = 0;
+        }
+        std::uint32_t total = 0;
+        for (int d = limit; d > 0; --d) total += static_cast<std::uint32_t>(count[static_cast<std::size_t>(d)]) << (limit - d);
+        while (total != (1u << limit)) {
+            --count[static_cast<std::size_t>(limit)];
+            for (int d = limit - 1; d > 0; --d) {
+                if (count[static_cast<std::size_t>(d)] != 0) {
+                    --count[static_cast<std::size_t>(d)];
+                    count[static_cast<std::size_t>(d) + 1] += 2;
+                    break;
+                }
+            }
+            --total;
+        }
+        deepest = limit;
+    }
+    // The rarest symbols get the longest codes.
+    int next = 0;
+    for (int d = deepest; d >= 1; --d) {
+        for (int k = 0; k < count[static_cast<std::size_t>(d)]; ++k) lengths[leaves[static_cast<std::size_t>(next++)].second] = static_cast<std::uint8_t>(d);
+    }
+}
+
+// Canonical codes for `lengths`, bit-reversed for deflate's LSB-first bit order.
+void canonical_codes(const std::uint8_t* lengths, int n, std::uint16_t* codes) {
+    std::array<std::uint16_t, 16> count{};
+    for (int i = 0; i < n; ++i) ++count[lengths[i]];
+    count[0] = 0;
+    std::array<std::uint16_t, 16> next{};
+    std::uint16_t code = 0;
+    for (int bits = 1; bits < 16; ++bits) {
+        code = static_cast<std::uint16_t>((code + count[static_cast<std::size_t>(bits) - 1]) << 1);
+        next[static_cast<std::size_t>(bits)] = code;
+    }
+    for (int i = 0; i < n; ++i) {
+        const int len = lengths[i];
+        if (len == 0) { codes[i] = 0; continue; }
+        const std::uint16_t c = next[static_cast<std::size_t>(len)]++;
+        std::uint16_t r = 0;
+        for (int b = 0; b < len; ++b) r = static_cast<std::uint16_t>(r | (((c >> b) & 1u) << (len - 1 - b)));
+        codes[i] = r;
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Bits out
+// ---------------------------------------------------------------------------------------
+
+class BitWriter {
+public:
+    explicit BitWriter(std::uint8_t* out) : out_(out), start_(out) {}
+    void put(std::uint32_t bits, int count) {
+        buffer_ |= static_cast<std::uint64_t>(bits) << count_;
+        count_ += count;
+        if (count_ >= 32) {
+            const auto word = static_cast<std::uint32_t>(buffer_);
+            std::memcpy(out_, &word, 4);  // little-endian (x86, ARM): deflate's byte order
+            out_ += 4;
+            buffer_ >>= 32;
+            count_ -= 32;
+        }
+    }
+    // Pads to a byte boundary with zero bits and writes out what is buffered.
+    void align() {
+        while (count_ > 0) {
+            *out_++ = static_cast<std::uint8_t>(buffer_);
+            buffer_ >>= 8;
+            count_ = std::max(count_ - 8, 0);
+        }
+        buffer_ = 0;
+    }
+    void bytes(const std::uint8_t* data, std::size_t n) {
+        std::memcpy(out_, data, n);
+        out_ += n;
+    }
+    std::size_t size() const { return static_cast<std::size_t>(out_ - start_); }
+
+private:
+    std::uint8_t* out_;
+    std::uint8_t* start_;
+    std::uint64_t buffer_ = 0;
+    int count_ = 0;
+};
+
+static_assert(std::endian::native == std::endian::little, "BitWriter writes words in little-endian order");
+
+// ---------------------------------------------------------------------------------------
+// LZ77
+// ---------------------------------------------------------------------------------------
+
+// A run of literals followed by a match (len 0: none, at the end of the strip).
+struct Sequence {
+    std::uint32_t literals;
+    std::uint16_t length;
+    std::uint16_t dist;  // 1..32768 stored as dist - 1
+};
+
+inline std::uint32_t load32(const std::uint8_t* p) {
+    std::uint32_t v;
+    std::memcpy(&v, p, 4);
+    return v;
+}
+inline std::uint64_t load64(const std::uint8_t* p) {
+    std::uint64_t v;
+    std::memcpy(&v, p, 8);
+    return v;
+}
+
+constexpr int kHashBits = 14;
+
+// How many bytes at a and b agree, up to `limit`.
+inline std::size_t common_length(const std::uint8_t* a, const std::uint8_t* b, std::size_t limit) {
+    std::size_t n = 0;
+    while (n + 8 <= limit) {
+        const std::uint64_t x = load64(a + n) ^ load64(b + n);
+        if (x != 0) return n + static_cast<std::size_t>(std::countr_zero(x) >> 3);
+        n += 8;
+    }
+    while (n < limit && a[n] == b[n]) ++n;
+    return n;
+}
+
+struct Tokens {
+    std::vector<Sequence> sequences;
+    std::array<std::uint32_t, kLitLenSymbols> litlen{};
+    std::array<std::uint32_t, kDistSymbols> dist{};
+};
+
+// Greedy parse of data[0..n).
+void tokenize(const std::uint8_t* data, std::size_t n, Tokens& t) {
+    std::vector<std::uint32_t> table(std::size_t{1} << kHashBits, 0);
+    std::size_t p = 0;
+    std::size_t literal_start = 0;
+    std::size_t misses = 0;
+    const auto emit = [&](std::size_t at, std::size_t length, std::size_t distance) {
+        for (std::size_t i = literal_start; i < at; ++i) ++t.litlen[data[i]];
+        ++t.litlen[257u + kLenCode[length]];
+        ++t.dist[static_cast<std::size_t>(dist_code(static_cast<std::uint32_t>(distance)))];
+        t.sequences.push_back({static_cast<std::uint32_t>(at - literal_start), static_cast<std::uint16_t>(length),
+                               static_cast<std::uint16_t>(distance - 1)});
+    };
+    while (p + kMinMatch <= n) {
+        const std::uint32_t v = load32(data + p);
+        std::size_t candidate = SIZE_MAX;
+        if (p >= kBpp && load32(data + p - kBpp) == v) {
+            candidate = p - kBpp;  // the pixel before: runs of one colour, rows of zeros
+        } else {
+            const std::uint32_t h = (v * 2654435761u) >> (32 - kHashBits);
+            const std::size_t c = table[h];
+            table[h] = static_cast<std::uint32_t>(p);
+            if (c < p && p - c <= kWindow && load32(data + c) == v) candidate = c;
+        }
+        if (candidate == SIZE_MAX) {
+            // No match: step faster through data that keeps missing (noise), as LZ4 does.
+            p += 1 + (misses++ >> 4);
+            continue;
+        }
+        misses = 0;
+        const std::size_t limit = std::min<std::size_t>(kMaxMatch, n - p);
+        const std::size_t length = kMinMatch + common_length(data + candidate + kMinMatch, data + p + kMinMatch, limit - kMinMatch);
+        emit(p, length, p - candidate);
+        p += length;
+        literal_start = p;
+    }
+    for (std::size_t i = literal_start; i < n; ++i) ++t.litlen[data[i]];
+    t.sequences.push_back({static_cast<std::uint32_t>(n - literal_start), 0, 0});
+}
+
+// ---------------------------------------------------------------------------------------
+// Blocks
+// ---------------------------------------------------------------------------------------
+
+struct ClItem {
+    std::uint8_t symbol;  // 0..18
+    std::uint8_t extra;   // the repeat count's extra bits for 16, 17, 18
+};
+
+// The run-length coding of the code lengths (RFC 1951, 3.2.7).
+std::vector<ClItem> rle_lengths(const std::uint8_t* lengths, int n) {
+    std::vector<ClItem> items;
+    int i = 0;
+    while (i < n) {
+        const std::uint8_t cur = lengths[i];
+        int run = 1;
+        while (i + run < n && lengths[i + run] == cur) ++run;
+        i += run;
+        if (cur == 0) {
+            while (run >= 11) {
+                const int r = std::min(run, 138);
+                items.push_back({18, static_cast<std::uint8_t>(r - 11)});
+                run -= r;
+            }
+            if (run >= 3) {
+                items.push_back({17, static_cast<std::uint8_t>(run - 3)});
+                run = 0;
+            }
+        } else {
+            items.push_back({cur, 0});
+            --run;
+            while (run >= 3) {
+                const int r = std::min(run, 6);
+                items.push_back({16, static_cast<std::uint8_t>(r - 3)});
+                run -= r;
+            }
+        }
+        for (; run > 0; --run) items.push_back({cur, 0});
+    }
+    return items;
+}
+
+constexpr std::array<int, 19> kClExtraBits = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 3, 7};
+
+// Writes data[0..n) as stored blocks; `final` marks the last one.
+void write_stored(BitWriter& out, const std::uint8_t* data, std::size_t n, bool final) {
+    do {
+        const std::size_t piece = std::min<std::size_t>(n, 65535);
+        n -= piece;
+        out.put(final && n == 0 ? 1u : 0u, 1);
+        out.put(0, 2);
+        out.align();
+        const std::uint8_t header[4] = {static_cast<std::uint8_t>(piece), static_cast<std::uint8_t>(piece >> 8),
+                                        static_cast<std::uint8_t>(~piece), static_cast<std::uint8_t>(~piece >> 8)};
+        out.bytes(header, 4);
+        out.bytes(data, piece);
+        data += piece;
+    } while (n > 0);
+}
+
+// Compresses one strip's filtered bytes as one block (dynamic Huffman, or stored when that
+// is no larger), ending on a byte boundary: the final strip's block is marked final, the
+// others are followed by an empty stored block.
+void compress_strip(const std::uint8_t* data, std::size_t n, bool final, BitWriter& out) {
+    Tokens t;
+    t.sequences.reserve(n / 16 + 16);
+    tokenize(data, n, t);
+    t.litlen[256] = 1;
+
+    std::array<std::uint8_t, kLitLenSymbols + kDistSymbols> lengths{};
+    std::uint8_t* lit_len = lengths.data();
+    std::uint8_t* dist_len = lengths.data() + kLitLenSymbols;
+    huffman_lengths(t.litlen.data(), kLitLenSymbols, 15, lit_len);
+    huffman_lengths(t.dist.data(), kDistSymbols, 15, dist_len);
+    int hlit = kLitLenSymbols;
+    while (hlit > 257 && lit_len[hlit - 1] == 0) --hlit;
+    int hdist = kDistSymbols;
+    while (hdist > 1 && dist_len[hdist - 1] == 0) --hdist;
+    // The code lengths, litlen then dist, as one sequence (allowed to run across the two).
+    std::array<std::uint8_t, kLitLenSymbols + kDistSymbols> sent{};
+    std::copy_n(lit_len, hlit, sent.begin());
+    std::copy_n(dist_len, hdist, sent.begin() + hlit);
+    const std::vector<ClItem> items = rle_lengths(sent.data(), hlit + hdist);
+    std::array<std::uint32_t, 19> cl_freq{};
+    for (const ClItem& it : items) ++cl_freq[it.symbol];
+    std::array<std::uint8_t, 19> cl_len{};
+    huffman_lengths(cl_freq.data(), 19, 7, cl_len.data());
+    int hclen = 19;
+    while (hclen > 4 && cl_len[kClOrder[static_cast<std::size_t>(hclen) - 1]] == 0) --hclen;
+
+    // Sizes in bits: dynamic against stored.
+    std::uint64_t bits = 3 + 5 + 5 + 4 + 3 * static_cast<std::uint64_t>(hclen);
+    for (const ClItem& it : items) bits += cl_len[it.symbol] + static_cast<std::uint64_t>(kClExtraBits[it.symbol]);
+    for (int s = 0; s < kLitLenSymbols; ++s) {
+        bits += std::uint64_t{t.litlen[static_cast<std::size_t>(s)]} *
+                (lit_len[s] + (s >= 257 ? kLenExtra[static_cast<std::size_t>(s) - 257] : 0u));
+    }
+    for (int s = 0; s < kDistSymbols; ++s) {
+        bits += std::uint64_t{t.dist[static_cast<std::size_t>(s)]} * (dist_len[s] + std::uint64_t{kDistExtra[static_cast<std::size_t>(s)]});
+    }
+    const std::uint64_t stored_bits = 8 * (static_cast<std::uint64_t>(n) + 5 * (n / 65535 + 1));
+    if (bits >= stored_bits) {
+        write_stored(out, data, n, final);
+        if (!final) write_stored(out, data, 0, false);
+        return;
+    }
+
+    std::array<std::uint16_t, kLitLenSymbols> lit_code{};
+    std::array<std::uint16_t, kDistSymbols> dist_code_bits{};
+    std::array<std::uint16_t, 19> cl_code{};
+    canonical_codes(lit_len, kLitLenSymbols, lit_code.data());
+    canonical_codes(dist_len, kDistSymbols, dist_code_bits.data());
+    canonical_codes(cl_len.data(), 19, cl_code.data());
+
+    out.put(final ? 1u : 0u, 1);
+    out.put(2, 2);  // dynamic Huffman
+    out.put(static_cast<std::uint32_t>(hlit - 257), 5);
+    out.put(static_cast<std::uint32_t>(hdist - 1), 5);
+    out.put(static_cast<std::uint32_t>(hclen - 4), 4);
+    for (int i = 0; i < hclen; ++i) out.put(cl_len[kClOrder[static_cast<std::size_t>(i)]], 3);
+    for (const ClItem& it : items) {
+        out.put(cl_code[it.symbol], cl_len[it.symbol]);
+        if (kClExtraBits[it.symbol] != 0) out.put(it.extra, kClExtraBits[it.symbol]);
+    }
+    // Literal codes packed with their lengths: one table load per byte.
+    std::array<std::uint32_t, 256> literal{};
+    for (int b = 0; b < 256; ++b) literal[static_cast<std::size_t>(b)] = (std::uint32_t{lit_code[static_cast<std::size_t>(b)]} << 8) | lit_len[b];
+    const std::uint8_t* p = data;
+    for (const Sequence& s : t.sequences) {
+        for (std::uint32_t i = 0; i < s.literals; ++i) {
+            const std::uint32_t l = literal[*p++];
+            out.put(l >> 8, static_cast<int>(l & 0xffu));
+        }
+        if (s.length == 0) continue;
+        const int lc = kLenCode[s.length];
+        out.put(lit_code[257u + static_cast<std::size_t>(lc)], lit_len[257 + lc]);
+        if (kLenExtra[static_cast<std::size_t>(lc)] != 0) {
+            out.put(s.length - kLenBase[static_cast<std::size_t>(lc)], kLenExtra[static_cast<std::size_t>(lc)]);
+        }
+        const std::uint32_t distance = std::uint32_t{s.dist} + 1;
+        const int dc = dist_code(distance);
+        out.put(dist_code_bits[static_cast<std::size_t>(dc)], dist_len[dc]);
+        if (kDistExtra[static_cast<std::size_t>(dc)] != 0) {
+            out.put(distance - kDistBase[static_cast<std::size_t>(dc)], kDistExtra[static_cast<std::size_t>(dc)]);
+        }
+        p += s.length;
+    }
+    out.put(lit_code[256], lit_len[256]);
+    if (!final) {
+        // An empty stored block: the strip ends on a byte boundary (zlib's sync flush).
+        out.put(0, 3);
+        out.align();
+        const std::uint8_t empty[4] = {0, 0, 0xff, 0xff};
+        out.bytes(empty, 4);
+    } else {
+        out.align();
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// The PNG file
+// ---------------------------------------------------------------------------------------
+
+void put32be(std::vector<std::uint8_t>& out, std::uint32_t v) {
+    const std::uint8_t b[4] = {static_cast<std::uint8_t>(v >> 24), static_cast<std::uint8_t>(v >> 16), static_cast<std::uint8_t>(v >> 8),
+                               static_cast<std::uint8_t>(v)};
+    out.insert(out.end(), b, b + 4);
+}
+
+// Appends a chunk whose data is already in `out` from `data_at` (after 8 bytes reserved for
+// its length and type): fills in the length and type, then appends the CRC.
+void close_chunk(std::vector<std::uint8_t>& out, std::size_t data_at, const char* type) {
+    const auto length = static_cast<std::uint32_t>(out.size() - data_at);
+    std::uint8_t* head = out.data() + data_at - 8;
+    head[0] = static_cast<std::uint8_t>(length >> 24);
+    head[1] = static_cast<std::uint8_t>(length >> 16);
+    head[2] = static_cast<std::uint8_t>(length >> 8);
+    head[3] = static_cast<std::uint8_t>(length);
+    std::memcpy(head + 4, type, 4);
+    const uLong crc = crc32_z(crc32_z(0, nullptr, 0), head + 4, length + 4u);
+    put32be(out, static_cast<std::uint32_t>(crc));
+}
+
+// Rows per strip: about 256 KiB of pixels, the same for every image of this width.
+int strip_rows(int width) { return std::max(1, (256 * 1024) / (width * static_cast<int>(kBpp) + 1)); }
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_png_fast(const Image& image, PngFilter filter, int threads) {
+    const std::size_t row_bytes = static_cast<std::size_t>(image.width) * kBpp;
+    const int rows_per_strip = strip_rows(image.width);
+    const int strips = (image.height + rows_per_strip - 1) / rows_per_strip;
+
+    // Each strip's compressed bytes and the Adler-32 of its filtered bytes.
+    struct Strip {
+        std::unique_ptr<std::uint8_t[]> bytes;
+        std::size_t size = 0;
+        uLong adler = 1;
+        std::size_t raw = 0;
+    };
+    std::vector<Strip> done(static_cast<std::size_t>(strips));
+    std::atomic<int> next{0};
+    const auto work = [&] {
+        std::vector<std::uint8_t> filtered;
+        std::vector<std::uint8_t> scratch;
+        for (int s = next++; s < strips; s = next++) {
+            const int y0 = s * rows_per_strip;
+            const int y1 = std::min(image.height, y0 + rows_per_strip);
+            const std::size_t n = static_cast<std::size_t>(y1 - y0) * (row_bytes + 1);
+            filtered.resize(n);
+            filter_rows(image, filter, y0, y1, filtered.data(), scratch);
+            Strip& strip = done[static_cast<std::size_t>(s)];
+            // Dynamic blocks are only written when smaller than stored ones; the slack covers
+            // the block headers and the closing empty stored block.
+            strip.bytes.reset(new std::uint8_t[n + n / 65535 * 5 + 1024]);
+            BitWriter out(strip.bytes.get());
+            compress_strip(filtered.data(), n, s + 1 == strips, out);
+            strip.size = out.size();
+            strip.raw = n;
+            strip.adler = adler32_z(adler32_z(0, nullptr, 0), filtered.data(), n);
+        }
+    };
+    const int helpers = std::clamp(threads, 1, strips) - 1;
+    std::vector<std::thread> pool;
+    pool.reserve(static_cast<std::size_t>(helpers));
+    for (int i = 0; i < helpers; ++i) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+
+    std::size_t total = 0;
+    for (const Strip& s : done) total += s.size;
+    // The signature, then 8 bytes for IHDR's length and type (close_chunk fills them in).
+    std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 0, 0, 0, 0, 0};
+    out.reserve(total + 128);
+    std::size_t at = out.size();
+    put32be(out, static_cast<std::uint32_t>(image.width));
+    put32be(out, static_cast<std::uint32_t>(image.height));
+    const std::uint8_t ihdr_rest[5] = {8, 6, 0, 0, 0};  // 8 bits, RGBA, deflate, adaptive filters, not interlaced
+    out.insert(out.end(), ihdr_rest, ihdr_rest + 5);
+    close_chunk(out, at, "IHDR");
+
+    out.resize(out.size() + 8);
+    at = out.size();
+    out.push_back(0x78);  // zlib: deflate, 32 KiB window
+    out.push_back(0x01);  // no dictionary, "fastest" level; 0x7801 % 31 == 0
+    uLong adler = done.front().adler;
+    for (std::size_t i = 0; i < done.size(); ++i) {
+        out.insert(out.end(), done[i].bytes.get(), done[i].bytes.get() + done[i].size);
+        if (i > 0) adler = adler32_combine(adler, done[i].adler, static_cast<z_off_t>(done[i].raw));
+    }
+    put32be(out, static_cast<std::uint32_t>(adler));
+    JOSTLE_ASSERT(out.size() - at <= 0x7fffffffu, "encode_png: IDAT larger than a PNG chunk can be");
+    close_chunk(out, at, "IDAT");
+
+    out.resize(out.size() + 8);
+    close_chunk(out, out.size(), "IEND");
+    return out;
+}
+
+}  // namespace jostle::detail
