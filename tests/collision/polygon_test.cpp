@@ -279,5 +279,54 @@ TEST(ShapeKinds, KindOfAndNameOf) {
     EXPECT_STREQ(name_of(ShapeKind::mask), "mask");
 }
 
+// A Polygon is valid or empty by construction: moved() and transformed() keep it valid, and a
+// motion that leaves the floats gives the empty polygon (which hits nothing).
+TEST(PolygonMotion, MovedAndTransformedStayValid) {
+    const Polygon p = make_polygon(std::vector<Vec2>{{0, 0}, {4, 0}, {4, 2}, {0, 3}}).value();
+    const Polygon m = p.moved({10, -5});
+    ASSERT_EQ(m.count(), 4);
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(m.points()[static_cast<std::size_t>(i)], (p.points()[static_cast<std::size_t>(i)] + Vec2{10, -5}));
+        EXPECT_EQ(m.normals()[static_cast<std::size_t>(i)], p.normals()[static_cast<std::size_t>(i)]);
+    }
+    expect_normalised(m);
+    const Transform xf{{3, 4}, Rot::from_angle(0.7f)};
+    const Polygon t = p.transformed(xf);
+    ASSERT_EQ(t.count(), 4);
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(t.points()[static_cast<std::size_t>(i)], apply(xf, p.points()[static_cast<std::size_t>(i)]));
+        EXPECT_EQ(t.normals()[static_cast<std::size_t>(i)], rotate(xf.q, p.normals()[static_cast<std::size_t>(i)]));
+    }
+    expect_normalised(t);
+    // The same contact as the original placed by hand.
+    EXPECT_TRUE(collide(m, Circle{{14, -4}, 0.5f}).hit);
+}
+
+TEST(PolygonMotion, NonFiniteResultIsTheEmptyPolygon) {
+    const Polygon p = make_polygon(std::vector<Vec2>{{0, 0}, {4, 0}, {0, 3}}).value();
+    EXPECT_EQ(p.moved({NAN, 0}).count(), 0);
+    EXPECT_EQ(p.moved({0, INFINITY}).count(), 0);
+    EXPECT_EQ(p.moved({3e38f, 0}).moved({3e38f, 0}).count(), 0);  // overflows to infinity
+    EXPECT_EQ(p.transformed(Transform{{0, 0}, Rot{NAN, 0}}).count(), 0);
+    EXPECT_EQ(Polygon{}.moved({1, 1}).count(), 0);
+    EXPECT_FALSE(collide(p.moved({NAN, 0}), p).hit);
+    EXPECT_EQ(to_polygon(Obb{{0, 0}, {-1, 1}}).count(), 0);  // a malformed box has no polygon
+    EXPECT_EQ(to_polygon(Aabb{{1, 1}, {0, 0}}).count(), 0);
+}
+
+// The Obb's stored rotation is the one its angle gives, whichever way the angle was set.
+TEST(ObbRotation, FollowsTheAngle) {
+    Obb b{{1, 2}, {3, 4}, 0.5f};
+    EXPECT_EQ(b.angle(), 0.5f);
+    EXPECT_EQ(b.rotation().c, std::cos(0.5f));
+    EXPECT_EQ(b.rotation().s, std::sin(0.5f));
+    b.set_angle(-1.25f);
+    EXPECT_EQ(b.angle(), -1.25f);
+    EXPECT_EQ(b.rotation().c, std::cos(-1.25f));
+    EXPECT_EQ(b.rotation().s, std::sin(-1.25f));
+    EXPECT_EQ(Obb{}.rotation().c, 1.0f);
+    EXPECT_EQ(Obb{}.rotation().s, 0.0f);
+}
+
 }  // namespace
 }  // namespace jostle

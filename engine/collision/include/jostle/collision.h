@@ -135,8 +135,9 @@ struct Aabb {
     Vec2 max;
 };
 
-// An oriented box. Its rotation is turned into cos/sin once, when the angle is set, so that
-// no query pays for a sine and a cosine (the box is immutable in angle except via set_angle).
+// An oriented box. Its angle is turned into cos/sin once, when it is set (the constructor or
+// set_angle), so that no query pays for a sine and a cosine; the angle is private so the two
+// can never disagree.
 struct Obb {
     Vec2 center;
     Vec2 half;  // half extents along the box's own x and y axes, >= 0
