@@ -117,6 +117,16 @@ Polygon Polygon::transformed(const Transform& xf) const {
     return out;
 }
 
+Polygon Polygon::rotated(Rot q) const {
+    Polygon out = *this;
+    for (int i = 0; i < count_; ++i) {
+        out.points_[i] = rotate(q, points_[i]);
+        out.normals_[i] = rotate(q, normals_[i]);
+        if (!finite(out.points_[i]) || !finite(out.normals_[i])) return {};
+    }
+    return out;
+}
+
 namespace {
 Aabb bounds_of_points(const Vec2* p, int n) {
     Aabb b{p[0], p[0]};

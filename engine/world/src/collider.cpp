@@ -73,23 +73,43 @@ Collider Collider::mask(std::shared_ptr<const Mask> mask, int offset_x, int offs
     return c;
 }
 
-Shape Collider::placed(Vec2 position, float angle) const {
-    if (!is_finite(position) || !std::isfinite(angle)) return nowhere();
+Shape Collider::placed(Vec2 position, float angle) const { return at(turned(angle), position); }
+
+Shape Collider::turned(float angle) const {
+    if (!std::isfinite(angle)) return nowhere();
     const Rot q = Rot::from_angle(angle);
-    const Transform xf{position, q};
-    struct Place {
-        const Transform& xf;
+    struct Turn {
+        Rot q;
         float angle;
-        Shape operator()(const Aabb& b) const { return Aabb{b.min + xf.p, b.max + xf.p}; }
-        Shape operator()(const Obb& b) const { return Obb{apply(xf, b.center), b.half, b.angle() + angle}; }
-        Shape operator()(const Circle& c) const { return Circle{apply(xf, c.center), c.radius}; }
-        Shape operator()(const Segment& s) const { return Segment{apply(xf, s.a), apply(xf, s.b)}; }
-        Shape operator()(const Polygon& p) const { return p.transformed(xf); }
+        Shape operator()(const Aabb& b) const { return b; }  // never turns
+        Shape operator()(const Obb& b) const { return Obb{rotate(q, b.center), b.half, b.angle() + angle}; }
+        Shape operator()(const Circle& c) const { return Circle{rotate(q, c.center), c.radius}; }
+        Shape operator()(const Segment& s) const { return Segment{rotate(q, s.a), rotate(q, s.b)}; }
+        Shape operator()(const Polygon& p) const { return p.rotated(q); }
+        Shape operator()(const PlacedMask& m) const { return m; }  // never turns
+    };
+    return std::visit(Turn{q, angle}, shape_);
+}
+
+// Translation only: rotate(q, v) + p is what apply(Transform{p, q}, v) computes, so the two
+// halves round exactly as one placement would.
+Shape Collider::at(const Shape& turned, Vec2 position) {
+    if (!is_finite(position)) return nowhere();
+    struct Move {
+        Vec2 p;
+        Shape operator()(const Aabb& b) const { return Aabb{b.min + p, b.max + p}; }
+        Shape operator()(Obb b) const {
+            b.center = b.center + p;
+            return b;
+        }
+        Shape operator()(const Circle& c) const { return Circle{c.center + p, c.radius}; }
+        Shape operator()(const Segment& s) const { return Segment{s.a + p, s.b + p}; }
+        Shape operator()(const Polygon& poly) const { return poly.moved(p); }
         Shape operator()(const PlacedMask& m) const {
-            return PlacedMask{m.mask, add_offset(nearest_pixel(xf.p.x), m.x), add_offset(nearest_pixel(xf.p.y), m.y)};
+            return PlacedMask{m.mask, add_offset(nearest_pixel(p.x), m.x), add_offset(nearest_pixel(p.y), m.y)};
         }
     };
-    return std::visit(Place{xf, angle}, shape_);
+    return std::visit(Move{position}, turned);
 }
 
 const char* name_of(BodyKind k) {

@@ -72,7 +72,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
             CastHit best_hit;
             broadphase.query(segment_bounds(from, to), [&](std::uint32_t j) {
                 if (j == i || !blocks(slots[j].body) || !detail::may_meet(me, id, slots[j].body, id_of(j))) return;
-                const CastHit h = cast(from, to, placed(j));
+                const CastHit h = cast(from, to, placement(j).shape);
                 if (!h.hit || (j == last_hit && h.t == 0.0f)) return;
                 if (best == n_slots || h.t < best_hit.t || (h.t == best_hit.t && j < best)) {
                     best = j;
@@ -146,7 +146,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
                     !detail::resolvable(s.body, slots[j].body)) {
                     return;
                 }
-                const SweepHit h = sweep(*circle, motion, placed(j), Vec2{});
+                const SweepHit h = sweep(*circle, motion, placement(j).shape, Vec2{});
                 if (!h.hit) return;
                 if (best == n_slots || h.t < best_hit.t || (h.t == best_hit.t && j < best)) {
                     best = j;

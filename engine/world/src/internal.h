@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "broadphase.h"
+#include "pair_grid.h"
 #include "jostle/world.h"
 
 namespace jostle {
@@ -21,6 +22,22 @@ struct Slot {
     std::uint64_t mask_fingerprint = 0;  // hash of the mask's pixels (0: no mask)
     bool fast = false;             // this step: a dynamic circle left for the sweeps phase
     Vec2 friction_dv;              // this step: velocity change from friction impulses
+    // The collider turned by turned_angle (Collider::turned): while the body's angle is the
+    // same, placing it is a translation (no sine, cosine or rotation per placement).
+    Shape turned;
+    float turned_angle = 0.0f;
+    bool turned_valid = false;
+};
+
+// A slot's collider placed at its body's transform, kept while the body's position and
+// angle stay the same: both are compared by their bits on every use, so no code path can
+// see a stale shape, and a step places each collider once per position it takes.
+struct Placement {
+    Shape shape;
+    Aabb box;  // bounds(shape)
+    Vec2 position;
+    float angle = 0.0f;
+    bool valid = false;
 };
 
 // A candidate or touching pair; a.index < b.index.
@@ -52,9 +69,13 @@ bool resolvable(const EntityDesc& a, const EntityDesc& b);
 struct World::Impl {
     WorldDesc desc;
     std::vector<detail::Slot> slots;
+    std::vector<detail::Placement> placements;  // one per slot
     std::vector<std::uint32_t> free_slots;  // reused last-in first-out
     std::size_t live = 0;
-    detail::Broadphase broadphase;
+    detail::Broadphase broadphase;  // fat bounds in a tree: region queries (sweeps, World queries)
+    detail::PairGrid pair_grid;     // all candidate pairs at once, over the same fat bounds
+    std::vector<detail::GridItem> grid_items;  // scratch of broadphase_pairs, kept to reuse
+    std::vector<detail::GridPair> grid_pairs;
     std::vector<Contact> contacts;          // after the last step, sorted by (a, b)
     std::vector<Event> events;
     std::vector<SweptPath> paths;
@@ -69,6 +90,13 @@ struct World::Impl {
     const detail::Slot* find(EntityId id) const;
     EntityId id_of(std::uint32_t index) const { return {index, slots[index].generation}; }
     Shape placed(std::uint32_t index) const;
+    Shape placed_at(std::uint32_t index, Vec2 position) const;  // at another position
+    // placed(index) and its bounds, computed only when the body moved or turned since the
+    // last call. The reference is valid until the next create().
+    const detail::Placement& placement(std::uint32_t index);
+    // Brings slot index's turned collider up to date with its collider and angle; called
+    // wherever either changes.
+    void turn(std::uint32_t index);
     // Brings slot index's proxy up to date with its placed collider (creating or dropping
     // it when the bounds become usable or not).
     void sync_proxy(std::uint32_t index, Vec2 displacement = {});

@@ -1,6 +1,7 @@
 // World::step: one fixed step in named phases (integrate, broadphase, narrowphase, resolve,
 // sweeps, events). The sweeps phase is in continuous.cpp. See the MANUAL in jostle/world.h.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -14,7 +15,6 @@ using detail::Slot;
 
 namespace {
 
-bool pair_less(const Pair& x, const Pair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; }
 
 float wrap_angle(float a) {
     constexpr float kPi = std::numbers::pi_v<float>;
@@ -60,8 +60,8 @@ void World::step(float dt) {
         // A kept contact still counts as touching while its gap is within the slop, so
         // rounding does not make begin/end events flicker.
         if (c.separation > w.desc.slop) continue;
-        const Shape a = w.placed(c.pair.a);
-        const Shape b = w.placed(c.pair.b);
+        const Shape& a = w.placement(c.pair.a).shape;
+        const Shape& b = w.placement(c.pair.b).shape;
         touching.push_back({w.id_of(c.pair.a), w.id_of(c.pair.b), detail::contact_point(a, b, c.manifold),
                             c.manifold.normal, c.manifold.depth, c.trigger,
                             c.trigger && w.slots[c.pair.b].body.kind == BodyKind::trigger, c.corner});
@@ -213,7 +213,11 @@ void World::Impl::integrate(float dt) {
         EntityDesc& b = s.body;
         // Bullets move along their path in the sweeps phase; static bodies never move.
         if (b.kind == BodyKind::static_body) continue;
-        b.angle = wrap_angle(b.angle + b.angular_velocity * dt);
+        const float angle = wrap_angle(b.angle + b.angular_velocity * dt);
+        if (std::bit_cast<std::uint32_t>(angle) != std::bit_cast<std::uint32_t>(b.angle)) {
+            b.angle = angle;
+            turn(i);
+        }
         if (b.kind == BodyKind::bullet) continue;
         const Vec2 motion = dt * b.velocity;
         if (b.kind == BodyKind::dynamic) {
@@ -232,24 +236,25 @@ void World::Impl::integrate(float dt) {
 // ---------------------------------------------------------------------------------------
 
 std::vector<Pair> World::Impl::broadphase_pairs() {
-    std::vector<Pair> pairs;
+    // Every collider but bullets' (they only cast), at its fat bounds; a pair needs one side
+    // that moves. The pairs are those whose fat bounds overlap: the tree's query from each
+    // moving body would find the same ones (the grid only finds them faster, all at once).
+    grid_items.clear();
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         const Slot& s = slots[i];
-        if (!s.alive || s.proxy < 0 || !detail::is_moving_kind(s.body.kind)) continue;
-        broadphase.query(broadphase.fat_bounds(s.proxy), [&](std::uint32_t j) {
-            if (j == i) return;
-            const Slot& o = slots[j];
-            if (o.body.kind == BodyKind::bullet) return;
-            // Two moving bodies find each other twice; keep the pair once.
-            if (detail::is_moving_kind(o.body.kind) && j < i) return;
-            if (s.body.kind == BodyKind::trigger && o.body.kind == BodyKind::trigger) return;
-            if (!detail::may_meet(s.body, id_of(i), o.body, id_of(j))) return;
-            pairs.push_back({std::min(i, j), std::max(i, j)});
-        });
+        if (!s.alive || s.proxy < 0 || s.body.kind == BodyKind::bullet) continue;
+        grid_items.push_back({broadphase.fat_bounds(s.proxy), i, detail::is_moving_kind(s.body.kind)});
     }
-    std::sort(pairs.begin(), pairs.end(), pair_less);
-    pairs.erase(std::unique(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) { return x.a == y.a && x.b == y.b; }),
-                pairs.end());
+    pair_grid.find(grid_items, grid_pairs);
+    std::vector<Pair> pairs;
+    pairs.reserve(grid_pairs.size());
+    for (const detail::GridPair& g : grid_pairs) {
+        const EntityDesc& a = slots[g.a].body;
+        const EntityDesc& b = slots[g.b].body;
+        if (a.kind == BodyKind::trigger && b.kind == BodyKind::trigger) continue;
+        if (!detail::may_meet(a, id_of(g.a), b, id_of(g.b))) continue;
+        pairs.push_back({g.a, g.b});
+    }
     return pairs;
 }
 
@@ -267,13 +272,15 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
         return (it != contacts.end() && it->a == a && it->b == b) ? &*it : nullptr;
     };
     for (const Pair& p : pairs) {
-        const Shape a = placed(p.a);
-        const Shape b = placed(p.b);
+        const detail::Placement& pa = placement(p.a);
+        const detail::Placement& pb = placement(p.b);
+        const Shape& a = pa.shape;
+        const Shape& b = pb.shape;
         const EntityDesc& ba = slots[p.a].body;
         const EntityDesc& bb = slots[p.b].body;
         const bool trigger = ba.kind == BodyKind::trigger || bb.kind == BodyKind::trigger;
         // Bounds first: cheap, and for masks it is the lecture's first test (09-30).
-        const Manifold m = overlaps(bounds(a), bounds(b)) ? collide(a, b) : Manifold{};
+        const Manifold m = overlaps(pa.box, pb.box) ? collide(a, b) : Manifold{};
         if (m.hit) {
             found.push_back({p, m, 0.0f, trigger, detail::corner_touch(a, b, m)});
             continue;
@@ -287,7 +294,7 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
         const Contact* last = last_step(id_of(p.a), id_of(p.b));
         if (last == nullptr) continue;
         constexpr float kSpeculative = 1.0f;  // px
-        const Shape b_back = bb.collider.placed(bb.position - kSpeculative * last->normal, bb.angle);
+        const Shape b_back = placed_at(p.b, bb.position - kSpeculative * last->normal);
         const Manifold back = collide(a, b_back);
         if (!back.hit) continue;
         Manifold touching = back;
@@ -348,51 +355,75 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
 
     // What friction took from the tangential velocity is taken from this step's motion too
     // (semi-implicit Euler), so a body that friction stops does not slide on for a step.
+    std::vector<bool> friction_moved(slots.size(), false);
     for (const NarrowContact* c : contacts_in) {
         for (std::uint32_t i : {c->pair.a, c->pair.b}) {
             Slot& s = slots[i];
             if (s.fast || (s.friction_dv.x == 0.0f && s.friction_dv.y == 0.0f)) continue;
             s.body.position += dt * s.friction_dv;
             s.friction_dv = {};  // once per body
+            friction_moved[i] = true;
         }
     }
 
     // Position: relaxation passes along the MTD, recomputed from the current positions, over
-    // every candidate pair (a push can make a new overlap).
-    std::vector<Pair> push_ground_up = push_pairs;
-    std::stable_sort(push_ground_up.begin(), push_ground_up.end(),
-                     [&](const Pair& x, const Pair& y) { return low_level(x.a, x.b) < low_level(y.a, y.b); });
+    // every candidate pair (a push can make a new overlap). A pair that pushed nothing when
+    // last looked at, and neither of whose bodies has moved since, would push nothing again:
+    // it is skipped (the same pushes in the same order, without re-testing the many
+    // candidates that do not touch). moved_at and clean_at count pushes: a body's last push,
+    // and one more than the count when a pair was last found with nothing to push.
+    std::vector<std::uint32_t> ground_up(push_pairs.size());
+    for (std::uint32_t k = 0; k < ground_up.size(); ++k) ground_up[k] = k;
+    std::stable_sort(ground_up.begin(), ground_up.end(), [&](std::uint32_t x, std::uint32_t y) {
+        return low_level(push_pairs[x].a, push_pairs[x].b) < low_level(push_pairs[y].a, push_pairs[y].b);
+    });
+    std::vector<std::uint32_t> in_order(push_pairs.size());
+    for (std::uint32_t k = 0; k < in_order.size(); ++k) in_order[k] = k;
+    std::vector<std::uint32_t> moved_at(slots.size(), 0);
+    std::vector<std::uint32_t> clean_at(push_pairs.size(), 0);
+    std::uint32_t pushes = 0;
     const int passes = std::max(desc.relaxation_passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         const bool shock = pass >= passes / 2;
         float deepest = 0.0f;
-        for (const Pair& p : shock ? push_ground_up : push_pairs) {
-            const Shape a = placed(p.a);
-            const Shape b = placed(p.b);
-            if (!overlaps(bounds(a), bounds(b))) continue;
+        for (const std::uint32_t k : shock ? ground_up : in_order) {
+            const Pair& p = push_pairs[k];
+            if (clean_at[k] != 0 && moved_at[p.a] < clean_at[k] && moved_at[p.b] < clean_at[k]) continue;
+            clean_at[k] = pushes + 1;  // until this pair pushes below
+            const detail::Placement& pa = placement(p.a);
+            const detail::Placement& pb = placement(p.b);
+            if (!overlaps(pa.box, pb.box)) continue;
+            const Shape& a = pa.shape;
+            const Shape& b = pb.shape;
             const Manifold m = collide(a, b);
             if (!m.hit || !(m.depth > 0.0f)) continue;
             const auto [ima, imb] = pair_masses(slots, level, p.a, p.b, shock);
-            const float k = ima + imb;
-            if (!(k > 0.0f)) continue;
+            const float k_sum = ima + imb;
+            if (!(k_sum > 0.0f)) continue;  // under shock propagation only a mass can drop to 0
             const Vec2 mtd = m.depth * m.normal;  // moves B out of A
-            Vec2 push_a = (ima / k) * mtd;
+            Vec2 push_a = (ima / k_sum) * mtd;
             if (std::holds_alternative<PlacedMask>(a) || std::holds_alternative<PlacedMask>(b)) {
                 // Mask MTDs are whole pixels, and so is each body's share of one.
                 const auto whole = [](Vec2 v) { return Vec2{std::floor(v.x + 0.5f), std::floor(v.y + 0.5f)}; };
                 push_a = whole(push_a);
                 slots[p.b].body.position += whole(mtd) - push_a;
             } else {
-                slots[p.b].body.position += (imb / k) * mtd;
+                slots[p.b].body.position += (imb / k_sum) * mtd;
             }
             slots[p.a].body.position -= push_a;
+            clean_at[k] = 0;
+            ++pushes;
+            moved_at[p.a] = moved_at[p.b] = pushes;
             deepest = std::fmax(deepest, m.depth);
         }
         if (deepest <= 0.5f * desc.slop) break;
     }
+    // The proxies of bodies that moved here (friction above, or pushes); for the others
+    // sync_proxy would find their bounds unchanged and do nothing.
     for (const Pair& p : push_pairs) {
-        sync_proxy(p.a);
-        sync_proxy(p.b);
+        for (const std::uint32_t i : {p.a, p.b}) {
+            if (moved_at[i] != 0 || friction_moved[i]) sync_proxy(i);
+        }
     }
 }
 

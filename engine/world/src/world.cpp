@@ -1,6 +1,7 @@
 // World: creating, finding, changing and destroying entities; the fixed-step driver.
 // The step itself is in step.cpp and continuous.cpp.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "internal.h"
@@ -64,14 +65,44 @@ const detail::Slot* World::Impl::find(EntityId id) const {
     return const_cast<World::Impl*>(this)->find(id);
 }
 
-Shape World::Impl::placed(std::uint32_t index) const {
+Shape World::Impl::placed(std::uint32_t index) const { return placed_at(index, slots[index].body.position); }
+
+Shape World::Impl::placed_at(std::uint32_t index, Vec2 position) const {
+    const detail::Slot& s = slots[index];
+    const EntityDesc& b = s.body;
+    // The angle's bits, not its value: a turned collider is only ever reused for exactly
+    // the angle it was turned by (and never for NaN).
+    if (s.turned_valid && std::bit_cast<std::uint32_t>(s.turned_angle) == std::bit_cast<std::uint32_t>(b.angle)) {
+        return Collider::at(s.turned, position);
+    }
+    return b.collider.placed(position, b.angle);
+}
+
+void World::Impl::turn(std::uint32_t index) {
+    detail::Slot& s = slots[index];
+    s.turned = s.body.collider.turned(s.body.angle);
+    s.turned_angle = s.body.angle;
+    s.turned_valid = std::isfinite(s.body.angle);
+    placements[index].valid = false;  // the collider may have changed
+}
+
+const detail::Placement& World::Impl::placement(std::uint32_t index) {
+    const auto same = [](float x, float y) { return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y); };
     const EntityDesc& b = slots[index].body;
-    return b.collider.placed(b.position, b.angle);
+    detail::Placement& p = placements[index];
+    if (!p.valid || !same(p.position.x, b.position.x) || !same(p.position.y, b.position.y) || !same(p.angle, b.angle)) {
+        p.shape = placed(index);
+        p.box = bounds(p.shape);
+        p.position = b.position;
+        p.angle = b.angle;
+        p.valid = true;
+    }
+    return p;
 }
 
 void World::Impl::sync_proxy(std::uint32_t index, Vec2 displacement) {
     detail::Slot& s = slots[index];
-    const Aabb tight = bounds(placed(index));
+    const Aabb tight = placement(index).box;
     const bool usable = s.alive && detail::Broadphase::usable(tight);
     if (!usable) {
         if (s.proxy >= 0) broadphase.destroy(s.proxy);
@@ -91,6 +122,9 @@ void World::Impl::remove(std::uint32_t index) {
     const EntityId id{index, s.generation};
     s.body = EntityDesc{};  // drop the mask share and user data; the slot stays hashed as free
     s.mask_fingerprint = 0;
+    s.turned = Shape{};
+    s.turned_valid = false;
+    placements[index] = {};
     s.fast = false;
     s.friction_dv = {};
     free_slots.push_back(index);
@@ -116,6 +150,7 @@ EntityId World::create(const EntityDesc& desc) {
         JOSTLE_ASSERT(impl_->slots.size() < 0xffffffffu, "too many entities");
         index = static_cast<std::uint32_t>(impl_->slots.size());
         impl_->slots.emplace_back();
+        impl_->placements.emplace_back();
     }
     detail::Slot& s = impl_->slots[index];
     // Generations count up from 1 and skip 0 (the null id) when they wrap.
@@ -125,6 +160,7 @@ EntityId World::create(const EntityDesc& desc) {
     s.mask_fingerprint = fingerprint(desc.collider);
     s.proxy = -1;
     ++impl_->live;
+    impl_->turn(index);
     impl_->sync_proxy(index);
     return {index, s.generation};
 }
@@ -164,6 +200,7 @@ bool change(World::Impl& impl, EntityId id, F&& f) {
     detail::Slot* s = impl.find(id);
     if (s == nullptr) return false;
     f(*s);
+    impl.turn(id.index);
     impl.sync_proxy(id.index);
     return true;
 }

@@ -189,6 +189,9 @@ public:
     // the empty polygon.
     Polygon moved(Vec2 d) const;
     Polygon transformed(const Transform& xf) const;
+    // Rotated by q about the origin: rotated(xf.q).moved(xf.p) is transformed(xf), bit for
+    // bit (the world turns a collider once per angle and moves it for each placement).
+    Polygon rotated(Rot q) const;
 
 private:
     friend std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* error);

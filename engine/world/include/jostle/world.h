@@ -160,6 +160,12 @@ public:
     const std::shared_ptr<const Mask>& mask_ptr() const { return mask_; }
     // The collider placed at a transform: the shape the collision module sees.
     Shape placed(Vec2 position, float angle) const;
+    // placed() in two halves, for placing a collider at many positions with one angle (the
+    // world does this each step): turned(angle) is the collider turned about the entity's
+    // origin, once per angle (the sines and cosines); at(turned(a), p) is placed(p, a), bit
+    // for bit.
+    Shape turned(float angle) const;
+    static Shape at(const Shape& turned, Vec2 position);
 
 private:
     Shape shape_ = Circle{};

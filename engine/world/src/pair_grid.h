@@ -1,0 +1,51 @@
+// PairGrid: every overlapping pair among a set of boxes at once, through a uniform grid built
+// afresh for each call. The world's candidate pairs come from here each step; the
+// b2DynamicTree (broadphase.h) stays for queries of one region (sweeps, World queries),
+// where it wins. Benchmarked against the tree, brute force and sort-and-sweep in
+// tests/bench/world_bench.cpp (BM_Broadphase).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "jostle/collision.h"
+
+namespace jostle::detail {
+
+struct GridItem {
+    Aabb box;              // finite, min <= max
+    std::uint32_t id = 0;  // ascending through the items
+    bool active = false;   // pairs of two inactive items are not reported
+};
+
+struct GridPair {
+    std::uint32_t a = 0;  // ids, a < b
+    std::uint32_t b = 0;
+};
+
+class PairGrid {
+public:
+    // Writes to `out` every pair of items whose boxes overlap (closed: touching counts, as
+    // b2TestOverlap), at least one of them active, sorted by (a, b), each pair once. Items
+    // must come in ascending id order. Exact whatever the grid: the grid only decides which
+    // pairs are tested.
+    void find(std::span<const GridItem> items, std::vector<GridPair>& out);
+
+private:
+    struct Cells {
+        std::int32_t x0, y0, x1, y1;
+    };
+    struct Entry {
+        std::int32_t x, y;   // the cell
+        std::uint32_t item;  // ordinal in items
+    };
+    std::vector<Cells> cells_;            // per item
+    std::vector<std::uint32_t> big_;      // items spanning too many cells: tested against all
+    std::vector<std::uint32_t> starts_;   // per hash bucket, into entries_ (counting sort)
+    std::vector<Entry> entries_;
+    std::vector<std::uint32_t> found_;    // one item's partners, before sorting
+    std::vector<float> scratch_;          // extents, for the cell size
+};
+
+}  // namespace jostle::detail
