@@ -82,6 +82,7 @@
 
 #include "arena.h"       // game/: game::ArenaGame
 #include "broadphase.h"  // engine/world/src (private): detail::Broadphase
+#include "pair_grid.h"   // engine/world/src (private): detail::PairGrid
 #include "jostle/core/rng.h"
 #include "jostle/replay/replay.h"
 #include "jostle/replay/scenario.h"
@@ -257,13 +258,66 @@ private:
     std::vector<PairKey> buffer_;     // the sweep's output, grown as needed, never shrunk
 };
 
-enum class PairMethod { brute_force, tree, sort_and_sweep };
+// The world's own way (detail::PairGrid, engine/world/src/pair_grid.h): every box into a
+// uniform grid rebuilt each step, all pairs at once, sorted as they are gathered.
+class GridPairs {
+public:
+    void pairs(const MovingBoxes& s, std::vector<PairKey>& out) {
+        items_.resize(s.size());
+        for (std::uint32_t i = 0; i < s.size(); ++i) items_[i] = {s.bounds[i], i, true};
+        grid_.find(items_, found_);
+        out.resize(found_.size());
+        for (std::size_t k = 0; k < found_.size(); ++k) out[k] = pair_key(found_[k].a, found_[k].b);
+    }
+
+private:
+    detail::PairGrid grid_;
+    std::vector<detail::GridItem> items_;
+    std::vector<detail::GridPair> found_;
+};
+
+// What World::step pays for its pairs: the tree's proxies kept up to date (moved as in
+// TreePairs; the tree answers the world's region queries), then the grid over their fat
+// bounds, then the pairs whose tight boxes touch (the world keeps every fat-bounds pair).
+class WorldPairs {
+public:
+    explicit WorldPairs(const MovingBoxes& s) {
+        for (std::uint32_t i = 0; i < s.size(); ++i) proxies_.push_back(tree_.create(s.bounds[i], i));
+    }
+    WorldPairs(const WorldPairs&) = delete;
+    WorldPairs& operator=(const WorldPairs&) = delete;
+
+    void pairs(const MovingBoxes& s, std::vector<PairKey>& out) {
+        const std::uint32_t n = s.size();
+        items_.resize(n);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            tree_.move(proxies_[i], s.bounds[i], s.moved[i]);
+            items_[i] = {tree_.fat_bounds(proxies_[i]), i, true};
+        }
+        grid_.find(items_, found_);
+        out.clear();
+        for (const detail::GridPair& p : found_) {
+            if (touch(s.bounds[p.a], s.bounds[p.b])) out.push_back(pair_key(p.a, p.b));
+        }
+    }
+
+private:
+    detail::Broadphase tree_;
+    std::vector<int> proxies_;
+    detail::PairGrid grid_;
+    std::vector<detail::GridItem> items_;
+    std::vector<detail::GridPair> found_;
+};
+
+enum class PairMethod { brute_force, tree, sort_and_sweep, grid, world };
 
 const char* name_of(PairMethod m) {
     switch (m) {
         case PairMethod::brute_force: return "brute_force";
         case PairMethod::tree: return "tree";
         case PairMethod::sort_and_sweep: return "sort_and_sweep";
+        case PairMethod::grid: return "grid";
+        case PairMethod::world: return "world";
     }
     return "?";
 }
@@ -284,6 +338,8 @@ private:
         MovingBoxes s = make_boxes(n);
         TreePairs tree(s);
         SortAndSweep sweep(s);
+        GridPairs grid;
+        WorldPairs world(s);
         std::vector<PairKey> reference, got;
         for (int step = 0; step < kCheckedSteps; ++step) {
             s.step();
@@ -299,6 +355,10 @@ private:
             if (got != reference) return differs("tree");
             sweep.pairs(s, got);
             if (got != reference) return differs("sort_and_sweep");
+            grid.pairs(s, got);
+            if (got != reference) return differs("grid");
+            world.pairs(s, got);
+            if (got != reference) return differs("world");
         }
         return {};
     }
@@ -316,6 +376,9 @@ void bm_broadphase(benchmark::State& state, BroadphaseChecks& checks, int n, Pai
     std::unique_ptr<SortAndSweep> sweep;
     if (method == PairMethod::tree) tree = std::make_unique<TreePairs>(s);
     if (method == PairMethod::sort_and_sweep) sweep = std::make_unique<SortAndSweep>(s);
+    GridPairs grid;
+    std::unique_ptr<WorldPairs> world;
+    if (method == PairMethod::world) world = std::make_unique<WorldPairs>(s);
     double pairs = 0.0;
     for (auto _ : state) {
         s.step();
@@ -323,6 +386,8 @@ void bm_broadphase(benchmark::State& state, BroadphaseChecks& checks, int n, Pai
             case PairMethod::brute_force: brute_force_pairs(s, out); break;
             case PairMethod::tree: tree->pairs(s, out); break;
             case PairMethod::sort_and_sweep: sweep->pairs(s, out); break;
+            case PairMethod::grid: grid.pairs(s, out); break;
+            case PairMethod::world: world->pairs(s, out); break;
         }
         benchmark::DoNotOptimize(out.data());
         pairs += static_cast<double>(out.size());
@@ -801,7 +866,8 @@ void add(const std::string& name, bool anchor, Fn&& fn) {
 
 void register_all(BroadphaseChecks& checks, StressScenes& scenes) {
     for (const int n : {1000, 10000, 20000}) {
-        for (const PairMethod m : {PairMethod::brute_force, PairMethod::tree, PairMethod::sort_and_sweep}) {
+        for (const PairMethod m : {PairMethod::brute_force, PairMethod::tree, PairMethod::sort_and_sweep, PairMethod::grid,
+                                   PairMethod::world}) {
             add("BM_Broadphase/" + std::to_string(n) + "/" + name_of(m), m == PairMethod::brute_force,
                 [=, &checks](benchmark::State& s) { bm_broadphase(s, checks, n, m); });
         }

@@ -1,8 +1,9 @@
-// PairGrid (see pair_grid.h): a uniform grid hashed into buckets, built by counting sort, then
-// pairs gathered item by item so that they come out sorted without sorting them all.
+// PairGrid (see pair_grid.h): a uniform grid hashed into buckets, built by counting sort; pairs
+// gathered bucket by bucket, then radix-sorted.
 #include "pair_grid.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace jostle::detail {
@@ -43,18 +44,27 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out)
     const auto n = static_cast<std::uint32_t>(items.size());
     if (n < 2) return;
 
-    // Cell size: the median of the boxes' larger extents. With cells as large as a typical
-    // box, each box spans about four cells and each cell holds about as many boxes as touch
-    // one; the median ignores a few long walls.
-    std::vector<float>& extents = scratch_;
-    extents.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
+    // Cell size: about a typical box's larger extent. Then each box spans about four cells
+    // and each cell holds about as many boxes as touch one. Typical: the mean of the extents
+    // up to four times the plain mean, so that a few long walls do not set it.
+    const auto extent = [&](std::uint32_t i) {
         const Aabb& b = items[i].box;
-        extents[i] = std::fmax(b.max.x - b.min.x, b.max.y - b.min.y);
+        return static_cast<double>(std::fmax(b.max.x - b.min.x, b.max.y - b.min.y));
+    };
+    double sum = 0.0;
+    for (std::uint32_t i = 0; i < n; ++i) sum += extent(i);
+    const double cap = 4.0 * sum / n;
+    double kept_sum = 0.0;
+    std::uint32_t kept = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const double e = extent(i);
+        if (e <= cap) {
+            kept_sum += e;
+            ++kept;
+        }
     }
-    std::nth_element(extents.begin(), extents.begin() + n / 2, extents.end());
-    const float size = std::fmax(extents[n / 2], 1e-3f);
-    const double inverse_size = 1.0 / static_cast<double>(size);
+    const double size = std::fmax(kept > 0 ? kept_sum / kept : 1.0, 1e-3);
+    const double inverse_size = 1.0 / size;
 
     cells_.resize(n);
     big_.clear();
@@ -73,57 +83,102 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out)
         }
     }
 
-    // Buckets: a power of two, at least twice the entries, filled by counting sort so that
-    // each bucket lists its items in ascending order.
+    // Buckets: a power of two, about one per entry, filled by counting sort so that each
+    // bucket lists its entries in ascending item order. A bucket may hold several cells.
+    // Each entry carries what the pair test needs, so that test reads memory in order.
     std::uint32_t buckets = 16;
-    while (buckets < 2 * entry_count) buckets *= 2;
+    while (buckets < entry_count) buckets *= 2;
     const std::uint32_t mask = buckets - 1;
     starts_.assign(buckets + 1, 0);
-    const auto for_each_cell = [&](std::uint32_t i, auto&& f) {
+    bucket_of_entry_.resize(entry_count);
+    std::size_t next = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
         const Cells& c = cells_[i];
         for (std::int32_t y = c.y0; y <= c.y1 && c.x0 <= c.x1; ++y) {
-            for (std::int32_t x = c.x0; x <= c.x1; ++x) f(x, y);
+            for (std::int32_t x = c.x0; x <= c.x1; ++x) {
+                const std::uint32_t bucket = bucket_of(x, y, mask);
+                bucket_of_entry_[next++] = bucket;
+                ++starts_[bucket + 1];
+            }
         }
-    };
-    for (std::uint32_t i = 0; i < n; ++i) {
-        for_each_cell(i, [&](std::int32_t x, std::int32_t y) { ++starts_[bucket_of(x, y, mask) + 1]; });
     }
     for (std::uint32_t k = 0; k < buckets; ++k) starts_[k + 1] += starts_[k];
     entries_.resize(entry_count);
-    found_.assign(starts_.begin(), starts_.end() - 1);  // fill positions, reused below
+    fill_.assign(starts_.begin(), starts_.end() - 1);
+    next = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
-        for_each_cell(i, [&](std::int32_t x, std::int32_t y) { entries_[found_[bucket_of(x, y, mask)]++] = {x, y, i}; });
-    }
-
-    // Pairs, item by item: a pair shows up in every cell both boxes share; it is kept in one,
-    // the cell of the corner (max of the mins) where their overlap starts.
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const GridItem& a = items[i];
-        const Cells& ca = cells_[i];
-        found_.clear();
-        const auto consider = [&](std::uint32_t j) {
-            if ((a.active || items[j].active) && touch(a.box, items[j].box)) found_.push_back(j);
-        };
-        if (ca.x0 > ca.x1) {  // a big item: against every later one
-            for (std::uint32_t j = i + 1; j < n; ++j) consider(j);
-        } else {
-            for_each_cell(i, [&](std::int32_t x, std::int32_t y) {
-                const std::uint32_t bucket = bucket_of(x, y, mask);
-                for (std::uint32_t e = starts_[bucket]; e < starts_[bucket + 1]; ++e) {
-                    const Entry& entry = entries_[e];
-                    const std::uint32_t j = entry.item;
-                    if (j <= i || entry.x != x || entry.y != y) continue;
-                    const Cells& cb = cells_[j];
-                    if (std::max(ca.x0, cb.x0) != x || std::max(ca.y0, cb.y0) != y) continue;
-                    consider(j);
-                }
-            });
-            for (const std::uint32_t j : big_) {
-                if (j > i) consider(j);
+        const Cells& c = cells_[i];
+        for (std::int32_t y = c.y0; y <= c.y1 && c.x0 <= c.x1; ++y) {
+            for (std::int32_t x = c.x0; x <= c.x1; ++x) {
+                entries_[fill_[bucket_of_entry_[next++]]++] = {x, y, c.x0, c.y0, items[i].box, i, items[i].active};
             }
         }
-        std::sort(found_.begin(), found_.end());
-        for (const std::uint32_t j : found_) out.push_back({a.id, items[j].id});
+    }
+
+    // Pairs, bucket by bucket: a pair shows up in every cell both boxes share; it is kept in
+    // one, the cell of the corner (max of the mins) where their overlap starts. The tests
+    // are combined without branches (each alone is a coin toss) and every candidate's key
+    // is written, the count advancing only for a real pair. Keys are (lower item, higher
+    // item) in one integer, sorted at the end.
+    const int bits = std::bit_width(n - 1);
+    std::size_t count = 0;
+    for (std::uint32_t bucket = 0; bucket < buckets; ++bucket) {
+        const std::uint32_t begin = starts_[bucket];
+        const std::uint32_t end = starts_[bucket + 1];
+        if (end - begin < 2) continue;
+        const std::size_t most = std::size_t{end - begin} * (end - begin - 1) / 2;
+        if (keys_.size() < count + most) keys_.resize(2 * (count + most));
+        for (std::uint32_t p = begin; p + 1 < end; ++p) {
+            const Entry& e = entries_[p];
+            const std::uint64_t high = std::uint64_t{e.item} << bits;
+            for (std::uint32_t q = p + 1; q < end; ++q) {
+                const Entry& f = entries_[q];
+                const bool here = (f.x == e.x) & (f.y == e.y) & (std::max(e.x0, f.x0) == e.x) &
+                                  (std::max(e.y0, f.y0) == e.y);
+                keys_[count] = high | f.item;
+                count += static_cast<std::size_t>(here & (e.active | f.active) & touch(e.box, f.box));
+            }
+        }
+    }
+    keys_.resize(count);
+    // Big items against every other item (two big ones once, from the lower).
+    for (const std::uint32_t i : big_) {
+        for (std::uint32_t j = 0; j < n; ++j) {
+            if (j == i || (j < i && cells_[j].x0 > cells_[j].x1)) continue;
+            if ((items[i].active || items[j].active) && touch(items[i].box, items[j].box)) {
+                keys_.push_back(i < j ? (std::uint64_t{i} << bits) | j : (std::uint64_t{j} << bits) | i);
+            }
+        }
+    }
+    sort_keys(2 * bits);
+    out.resize(keys_.size());
+    const std::uint64_t low = (std::uint64_t{1} << bits) - 1;
+    for (std::size_t k = 0; k < keys_.size(); ++k) {
+        out[k] = {items[keys_[k] >> bits].id, items[keys_[k] & low].id};
+    }
+}
+
+// LSD radix sort of keys_ on their low `bits` bits, 11 bits a pass (counts fit in L1).
+void PairGrid::sort_keys(int bits) {
+    if (keys_.size() < 256) {
+        std::sort(keys_.begin(), keys_.end());
+        return;
+    }
+    constexpr int kDigit = 11;
+    constexpr std::size_t kRadix = std::size_t{1} << kDigit;
+    sorted_.resize(keys_.size());
+    std::vector<std::uint32_t>& count = fill_;
+    for (int shift = 0; shift < bits; shift += kDigit) {
+        count.assign(kRadix, 0);
+        for (const std::uint64_t k : keys_) ++count[(k >> shift) & (kRadix - 1)];
+        std::uint32_t sum = 0;
+        for (std::uint32_t& c : count) {
+            const std::uint32_t here = c;
+            c = sum;
+            sum += here;
+        }
+        for (const std::uint64_t k : keys_) sorted_[count[(k >> shift) & (kRadix - 1)]++] = k;
+        keys_.swap(sorted_);
     }
 }
 

@@ -37,15 +37,21 @@ private:
         std::int32_t x0, y0, x1, y1;
     };
     struct Entry {
-        std::int32_t x, y;   // the cell
-        std::uint32_t item;  // ordinal in items
+        std::int32_t x, y;    // the cell
+        std::int32_t x0, y0;  // the item's first cell
+        Aabb box;             // the item's
+        std::uint32_t item;   // ordinal in items
+        bool active;
     };
     std::vector<Cells> cells_;            // per item
     std::vector<std::uint32_t> big_;      // items spanning too many cells: tested against all
     std::vector<std::uint32_t> starts_;   // per hash bucket, into entries_ (counting sort)
     std::vector<Entry> entries_;
-    std::vector<std::uint32_t> found_;    // one item's partners, before sorting
-    std::vector<float> scratch_;          // extents, for the cell size
+    std::vector<std::uint32_t> fill_;     // counting sorts' positions
+    std::vector<std::uint32_t> bucket_of_entry_;  // in the order entries are made
+    std::vector<std::uint64_t> keys_;     // pairs found, as (lower item, higher item)
+    std::vector<std::uint64_t> sorted_;   // the radix sort's other buffer
+    void sort_keys(int bits);
 };
 
 }  // namespace jostle::detail

@@ -379,9 +379,21 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     });
     std::vector<std::uint32_t> in_order(push_pairs.size());
     for (std::uint32_t k = 0; k < in_order.size(); ++k) in_order[k] = k;
+    // The narrowphase already tested every pair at these positions: a pair it found with
+    // nothing to push (no overlap, or touching) starts clean, unless friction moved a body.
     std::vector<std::uint32_t> moved_at(slots.size(), 0);
-    std::vector<std::uint32_t> clean_at(push_pairs.size(), 0);
-    std::uint32_t pushes = 0;
+    std::vector<std::uint32_t> clean_at(push_pairs.size(), 1);
+    for (std::uint32_t i = 0; i < slots.size(); ++i) {
+        if (friction_moved[i]) moved_at[i] = 1;
+    }
+    for (std::size_t k = 0, f = 0; k < push_pairs.size(); ++k) {
+        const Pair& p = push_pairs[k];
+        while (f < found.size() && (found[f].pair.a < p.a || (found[f].pair.a == p.a && found[f].pair.b < p.b))) ++f;
+        if (f < found.size() && found[f].pair.a == p.a && found[f].pair.b == p.b && found[f].manifold.depth > 0.0f) {
+            clean_at[k] = 0;  // overlapping: to be pushed
+        }
+    }
+    std::uint32_t pushes = 1;
     const int passes = std::max(desc.relaxation_passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         const bool shock = pass >= passes / 2;
@@ -422,7 +434,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     // sync_proxy would find their bounds unchanged and do nothing.
     for (const Pair& p : push_pairs) {
         for (const std::uint32_t i : {p.a, p.b}) {
-            if (moved_at[i] != 0 || friction_moved[i]) sync_proxy(i);
+            if (moved_at[i] != 0) sync_proxy(i);
         }
     }
 }
