@@ -33,11 +33,11 @@ struct Slot {
 // angle stay the same: both are compared by their bits on every use, so no code path can
 // see a stale shape, and a step places each collider once per position it takes.
 struct Placement {
-    Shape shape;
-    Aabb box;  // bounds(shape)
-    Vec2 position;
+    Vec2 position;  // the key first, next to the box: one cache line for both
     float angle = 0.0f;
     bool valid = false;
+    Aabb box;  // bounds(shape)
+    Shape shape;
 };
 
 // A candidate or touching pair; a.index < b.index.
@@ -76,6 +76,7 @@ struct World::Impl {
     detail::PairGrid pair_grid;     // all candidate pairs at once, over the same fat bounds
     std::vector<detail::GridItem> grid_items;  // scratch of broadphase_pairs, kept to reuse
     std::vector<detail::GridPair> grid_pairs;
+    std::vector<Aabb> boxes;  // scratch of resolve: placement(i).box, packed
     std::vector<Contact> contacts;          // after the last step, sorted by (a, b)
     std::vector<Event> events;
     std::vector<SweptPath> paths;

@@ -394,6 +394,16 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         }
     }
     std::uint32_t pushes = 1;
+    // Each body's bounds, packed, so that the many candidates that do not touch are turned
+    // away without reaching the placements (a superset test: overlaps() decides).
+    boxes.resize(slots.size());
+    for (const Pair& p : push_pairs) {
+        boxes[p.a] = placement(p.a).box;
+        boxes[p.b] = placement(p.b).box;
+    }
+    const auto touch = [](const Aabb& a, const Aabb& b) {
+        return (a.max.x >= b.min.x) & (a.min.x <= b.max.x) & (a.max.y >= b.min.y) & (a.min.y <= b.max.y);
+    };
     const int passes = std::max(desc.relaxation_passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         const bool shock = pass >= passes / 2;
@@ -402,6 +412,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             const Pair& p = push_pairs[k];
             if (clean_at[k] != 0 && moved_at[p.a] < clean_at[k] && moved_at[p.b] < clean_at[k]) continue;
             clean_at[k] = pushes + 1;  // until this pair pushes below
+            if (!touch(boxes[p.a], boxes[p.b])) continue;
             const detail::Placement& pa = placement(p.a);
             const detail::Placement& pb = placement(p.b);
             if (!overlaps(pa.box, pb.box)) continue;
@@ -426,6 +437,8 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             clean_at[k] = 0;
             ++pushes;
             moved_at[p.a] = moved_at[p.b] = pushes;
+            boxes[p.a] = placement(p.a).box;
+            boxes[p.b] = placement(p.b).box;
             deepest = std::fmax(deepest, m.depth);
         }
         if (deepest <= 0.5f * desc.slop) break;
