@@ -37,9 +37,10 @@
 //   each body (staggered, so 1/15 of them per step) gets its collider re-set at a slowly
 //   changing scale (the world has no scale) and its speed restored to its own (the direction
 //   kept: a game's movers; without this the scene would settle and later iterations would time
-//   a resting world). Only the engine's step is timed (the re-sets are paused out). Each scene
-//   is made once per run and warmed up for 60 steps (the random placement starts with
-//   overlaps), then keeps running across the benchmark's runs. Variants:
+//   a resting world). Only the engine's step is timed (the re-sets are paused out). Each run
+//   makes its scene afresh and warms it up for 60 steps (the random placement starts with
+//   overlaps), then times exactly the next 120 steps (a fixed iteration count), so every run
+//   and both engines time the same stretch of the scene's life. Variants:
 //     box2d   (anchor) Box2D 2.4.1's b2World of the same scene (8 px per metre, same bodies,
 //             velocities, materials and schedule; fixedRotation, so contacts leave spin alone
 //             as in jostle; 8 velocity and 3 position iterations, sleeping off, continuous
@@ -700,32 +701,27 @@ private:
 
 enum class StressEngine { box2d, jostle };
 
-// Each scene is made and warmed up once, on first use, and then keeps running: the warm-up
-// of the large scenes costs seconds, and Google Benchmark calls a benchmark several times.
-class StressScenes {
-public:
-    StressScene& get(int n, StressEngine engine) {
-        std::unique_ptr<StressScene>& scene = scenes_[{n, engine}];
-        if (!scene) {
-            std::unique_ptr<StressScene> made;
-            if (engine == StressEngine::box2d) {
-                made = std::make_unique<Box2dStress>(make_stress_scene(n));
-            } else {
-                made = std::make_unique<JostleStress>(make_stress_scene(n));
-            }
-            made->warm_up();
-            scene = std::move(made);
-        }
-        return *scene;
+// A fresh scene for each run of a benchmark, warmed up (untimed), so that every run and both
+// engines time the same window of the scene's life: steps kWarmupSteps .. + kTimedSteps. (A
+// scene kept running across runs drifts: it gathers contacts, so later runs would time a
+// busier world than earlier ones.)
+constexpr int kTimedSteps = 120;
+
+std::unique_ptr<StressScene> make_scene(int n, StressEngine engine) {
+    std::unique_ptr<StressScene> made;
+    if (engine == StressEngine::box2d) {
+        made = std::make_unique<Box2dStress>(make_stress_scene(n));
+    } else {
+        made = std::make_unique<JostleStress>(make_stress_scene(n));
     }
+    made->warm_up();
+    return made;
+}
 
-private:
-    std::map<std::pair<int, StressEngine>, std::unique_ptr<StressScene>> scenes_;
-};
-
-void bm_world_stress(benchmark::State& state, StressScenes& scenes, int n, StressEngine engine) {
+void bm_world_stress(benchmark::State& state, int n, StressEngine engine) {
     guarded(state, [&] {
-        StressScene& scene = scenes.get(n, engine);
+        const std::unique_ptr<StressScene> made = make_scene(n, engine);
+        StressScene& scene = *made;
         if (const int out = scene.escaped(); out > 0) {
             state.SkipWithError((std::to_string(out) + " bodies left the arena (warm-up)").c_str());
             return;
@@ -854,8 +850,8 @@ void bm_replay_memory(benchmark::State& state, int replays) {
 
 // Registers one benchmark; anchors carry the label "anchor" (tools/bench-ratios looks for it).
 template <class Fn>
-void add(const std::string& name, bool anchor, Fn&& fn) {
-    benchmark::RegisterBenchmark(name.c_str(),
+benchmark::internal::Benchmark* add(const std::string& name, bool anchor, Fn&& fn) {
+    return benchmark::RegisterBenchmark(name.c_str(),
                                  [anchor, fn = std::forward<Fn>(fn)](benchmark::State& state) {
                                      fn(state);
                                      if (anchor) state.SetLabel("anchor");
@@ -864,7 +860,7 @@ void add(const std::string& name, bool anchor, Fn&& fn) {
         ->Unit(benchmark::kMillisecond);
 }
 
-void register_all(BroadphaseChecks& checks, StressScenes& scenes) {
+void register_all(BroadphaseChecks& checks) {
     for (const int n : {1000, 10000, 20000}) {
         for (const PairMethod m : {PairMethod::brute_force, PairMethod::tree, PairMethod::sort_and_sweep, PairMethod::grid,
                                    PairMethod::world}) {
@@ -875,7 +871,8 @@ void register_all(BroadphaseChecks& checks, StressScenes& scenes) {
     for (const int n : {1000, 2000, 5000, 10000}) {
         for (const StressEngine e : {StressEngine::box2d, StressEngine::jostle}) {
             add("BM_WorldStress/" + std::to_string(n) + "/" + (e == StressEngine::box2d ? "box2d" : "jostle"),
-                e == StressEngine::box2d, [=, &scenes](benchmark::State& s) { bm_world_stress(s, scenes, n, e); });
+                e == StressEngine::box2d, [=](benchmark::State& s) { bm_world_stress(s, n, e); })
+                ->Iterations(kTimedSteps);
         }
     }
     add("BM_Replay/demo/no_dumps", false, [](benchmark::State& s) { bm_replay(s, 0); });
@@ -887,8 +884,7 @@ void register_all(BroadphaseChecks& checks, StressScenes& scenes) {
 
 int main(int argc, char** argv) {
     BroadphaseChecks checks;
-    StressScenes scenes;
-    register_all(checks, scenes);
+    register_all(checks);
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     benchmark::RunSpecifiedBenchmarks();

@@ -368,34 +368,60 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
 
     // Position: relaxation passes along the MTD, recomputed from the current positions, over
     // every candidate pair (a push can make a new overlap). A pair that pushed nothing when
-    // last looked at, and neither of whose bodies has moved since, would push nothing again:
-    // it is skipped (the same pushes in the same order, without re-testing the many
-    // candidates that do not touch). moved_at and clean_at count pushes: a body's last push,
-    // and one more than the count when a pair was last found with nothing to push.
-    std::vector<std::uint32_t> ground_up(push_pairs.size());
-    for (std::uint32_t k = 0; k < ground_up.size(); ++k) ground_up[k] = k;
+    // last looked at, and neither of whose bodies has moved since, would push nothing again,
+    // so each pass looks only at the pairs marked dirty: those that pushed last time, and
+    // those with a body that moved since they were looked at. Same pushes in the same order
+    // as testing every pair every pass, without re-testing the many that do not touch.
+    const auto n_pairs = static_cast<std::uint32_t>(push_pairs.size());
+    std::vector<std::uint32_t> ground_up(n_pairs);
+    for (std::uint32_t k = 0; k < n_pairs; ++k) ground_up[k] = k;
     std::stable_sort(ground_up.begin(), ground_up.end(), [&](std::uint32_t x, std::uint32_t y) {
         return low_level(push_pairs[x].a, push_pairs[x].b) < low_level(push_pairs[y].a, push_pairs[y].b);
     });
-    std::vector<std::uint32_t> in_order(push_pairs.size());
-    for (std::uint32_t k = 0; k < in_order.size(); ++k) in_order[k] = k;
-    // The narrowphase already tested every pair at these positions: a pair it found with
-    // nothing to push (no overlap, or touching) starts clean, unless friction moved a body.
-    std::vector<std::uint32_t> moved_at(slots.size(), 0);
-    std::vector<std::uint32_t> clean_at(push_pairs.size(), 1);
-    for (std::uint32_t i = 0; i < slots.size(); ++i) {
-        if (friction_moved[i]) moved_at[i] = 1;
+    std::vector<std::uint32_t> rank_ground_up(n_pairs);
+    for (std::uint32_t r = 0; r < n_pairs; ++r) rank_ground_up[ground_up[r]] = r;
+    // Each body's pairs (compressed rows), to mark them when the body moves.
+    std::vector<std::uint32_t> first_pair(slots.size() + 1, 0);
+    for (const Pair& p : push_pairs) {
+        ++first_pair[p.a + 1];
+        ++first_pair[p.b + 1];
     }
-    for (std::size_t k = 0, f = 0; k < push_pairs.size(); ++k) {
+    for (std::size_t i = 0; i < slots.size(); ++i) first_pair[i + 1] += first_pair[i];
+    std::vector<std::uint32_t> pairs_of(2 * std::size_t{n_pairs});
+    {
+        std::vector<std::uint32_t> at(first_pair.begin(), first_pair.end() - 1);
+        for (std::uint32_t k = 0; k < n_pairs; ++k) {
+            pairs_of[at[push_pairs[k].a]++] = k;
+            pairs_of[at[push_pairs[k].b]++] = k;
+        }
+    }
+    // Dirty marks as bits, one set in the order of the plain passes and one in ground-up order.
+    const std::size_t words = (std::size_t{n_pairs} + 63) / 64;
+    std::vector<std::uint64_t> dirty_in_order(words, 0), dirty_ground_up(words, 0);
+    const auto set_dirty = [&](std::uint32_t k) {
+        dirty_in_order[k / 64] |= std::uint64_t{1} << (k % 64);
+        const std::uint32_t r = rank_ground_up[k];
+        dirty_ground_up[r / 64] |= std::uint64_t{1} << (r % 64);
+    };
+    std::vector<bool> moved(slots.size(), false);
+    const auto body_moved = [&](std::uint32_t i) {
+        moved[i] = true;
+        for (std::uint32_t e = first_pair[i]; e < first_pair[i + 1]; ++e) set_dirty(pairs_of[e]);
+    };
+    // The narrowphase already tested every pair at these positions: dirty are the pairs it
+    // found overlapping, and those of bodies friction moved.
+    for (std::size_t k = 0, f = 0; k < n_pairs; ++k) {
         const Pair& p = push_pairs[k];
         while (f < found.size() && (found[f].pair.a < p.a || (found[f].pair.a == p.a && found[f].pair.b < p.b))) ++f;
         if (f < found.size() && found[f].pair.a == p.a && found[f].pair.b == p.b && found[f].manifold.depth > 0.0f) {
-            clean_at[k] = 0;  // overlapping: to be pushed
+            set_dirty(static_cast<std::uint32_t>(k));
         }
     }
-    std::uint32_t pushes = 1;
-    // Each body's bounds, packed, so that the many candidates that do not touch are turned
-    // away without reaching the placements (a superset test: overlaps() decides).
+    for (std::uint32_t i = 0; i < slots.size(); ++i) {
+        if (friction_moved[i]) body_moved(i);
+    }
+    // Each body's bounds, packed, so that the candidates that do not touch are turned away
+    // without reaching the placements (a superset test: overlaps() decides).
     boxes.resize(slots.size());
     for (const Pair& p : push_pairs) {
         boxes[p.a] = placement(p.a).box;
@@ -404,14 +430,26 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     const auto touch = [](const Aabb& a, const Aabb& b) {
         return (a.max.x >= b.min.x) & (a.min.x <= b.max.x) & (a.max.y >= b.min.y) & (a.min.y <= b.max.y);
     };
+    // The next dirty position at or after `from` (marks ahead of the cursor are taken in this
+    // pass, marks behind it in the next), or n_pairs.
+    const auto next_dirty = [&](const std::vector<std::uint64_t>& bits, std::uint32_t from) {
+        for (std::size_t w = from / 64; w < words; ++w) {
+            std::uint64_t word = bits[w];
+            if (w == from / 64) word &= ~std::uint64_t{0} << (from % 64);
+            if (word != 0) return static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(std::countr_zero(word)));
+        }
+        return n_pairs;
+    };
     const int passes = std::max(desc.relaxation_passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         const bool shock = pass >= passes / 2;
+        const std::vector<std::uint64_t>& bits = shock ? dirty_ground_up : dirty_in_order;
         float deepest = 0.0f;
-        for (const std::uint32_t k : shock ? ground_up : in_order) {
+        for (std::uint32_t r = next_dirty(bits, 0); r < n_pairs; r = next_dirty(bits, r + 1)) {
+            const std::uint32_t k = shock ? ground_up[r] : r;
+            dirty_in_order[k / 64] &= ~(std::uint64_t{1} << (k % 64));
+            dirty_ground_up[rank_ground_up[k] / 64] &= ~(std::uint64_t{1} << (rank_ground_up[k] % 64));
             const Pair& p = push_pairs[k];
-            if (clean_at[k] != 0 && moved_at[p.a] < clean_at[k] && moved_at[p.b] < clean_at[k]) continue;
-            clean_at[k] = pushes + 1;  // until this pair pushes below
             if (!touch(boxes[p.a], boxes[p.b])) continue;
             const detail::Placement& pa = placement(p.a);
             const detail::Placement& pb = placement(p.b);
@@ -434,9 +472,8 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
                 slots[p.b].body.position += (imb / k_sum) * mtd;
             }
             slots[p.a].body.position -= push_a;
-            clean_at[k] = 0;
-            ++pushes;
-            moved_at[p.a] = moved_at[p.b] = pushes;
+            body_moved(p.a);  // marks this pair too: it is looked at again next pass
+            body_moved(p.b);
             boxes[p.a] = placement(p.a).box;
             boxes[p.b] = placement(p.b).box;
             deepest = std::fmax(deepest, m.depth);
@@ -447,7 +484,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     // sync_proxy would find their bounds unchanged and do nothing.
     for (const Pair& p : push_pairs) {
         for (const std::uint32_t i : {p.a, p.b}) {
-            if (moved_at[i] != 0) sync_proxy(i);
+            if (moved[i]) sync_proxy(i);
         }
     }
 }
