@@ -4,6 +4,7 @@ Benchmarks are named BM_<Family>/<size...>/<variant>: those that differ only in 
 form a group, and the one labelled "anchor" is the group's reference, measured in the same run.
 """
 import json
+import re
 import statistics
 import subprocess
 import sys
@@ -24,7 +25,8 @@ def collect(benchmarks):
     """run name -> {"ms", "cv", "fps", "bytes", "anchor"}: the median aggregate, else the median of runs."""
     runs, failed = {}, False
     for b in benchmarks:
-        name = b["run_name"].removesuffix("/real_time")
+        # A fixed iteration count shows in the name ("/iterations:120"): not part of the case.
+        name = re.sub(r"/iterations:\d+", "", b["run_name"].removesuffix("/real_time"))
         if b.get("error_occurred"):
             print(f"{name}: ERROR {b.get('error_message', '')}", file=sys.stderr)
             failed = True

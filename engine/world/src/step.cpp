@@ -15,6 +15,11 @@ using detail::Slot;
 
 namespace {
 
+// A superset of overlaps(): the same comparisons without the validity checks, inline and
+// without branches, to turn away candidates cheaply; overlaps() then decides.
+bool touch(const Aabb& a, const Aabb& b) {
+    return (a.max.x >= b.min.x) & (a.min.x <= b.max.x) & (a.max.y >= b.min.y) & (a.min.y <= b.max.y);
+}
 
 float wrap_angle(float a) {
     constexpr float kPi = std::numbers::pi_v<float>;
@@ -240,10 +245,12 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
     // that moves. The pairs are those whose fat bounds overlap: the tree's query from each
     // moving body would find the same ones (the grid only finds them faster, all at once).
     grid_items.clear();
+    boxes.resize(slots.size());
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         const Slot& s = slots[i];
         if (!s.alive || s.proxy < 0 || s.body.kind == BodyKind::bullet) continue;
         grid_items.push_back({broadphase.fat_bounds(s.proxy), i, detail::is_moving_kind(s.body.kind)});
+        boxes[i] = placement(i).box;  // for the narrowphase and resolve
     }
     pair_grid.find(grid_items, grid_pairs);
     std::vector<Pair> pairs;
@@ -272,17 +279,19 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
         return (it != contacts.end() && it->a == a && it->b == b) ? &*it : nullptr;
     };
     for (const Pair& p : pairs) {
-        const detail::Placement& pa = placement(p.a);
-        const detail::Placement& pb = placement(p.b);
-        const Shape& a = pa.shape;
-        const Shape& b = pb.shape;
         const EntityDesc& ba = slots[p.a].body;
         const EntityDesc& bb = slots[p.b].body;
         const bool trigger = ba.kind == BodyKind::trigger || bb.kind == BodyKind::trigger;
-        // Bounds first: cheap, and for masks it is the lecture's first test (09-30).
-        const Manifold m = overlaps(pa.box, pb.box) ? collide(a, b) : Manifold{};
+        // Bounds first: cheap, and for masks it is the lecture's first test (09-30). The
+        // packed boxes turn most candidates away without reading their placements.
+        Manifold m;
+        if (touch(boxes[p.a], boxes[p.b])) {
+            const detail::Placement& pa = placement(p.a);
+            const detail::Placement& pb = placement(p.b);
+            if (overlaps(pa.box, pb.box)) m = collide(pa.shape, pb.shape);
+        }
         if (m.hit) {
-            found.push_back({p, m, 0.0f, trigger, detail::corner_touch(a, b, m)});
+            found.push_back({p, m, 0.0f, trigger, detail::corner_touch(placement(p.a).shape, placement(p.b).shape, m)});
             continue;
         }
         // Bodies that touched last step and now miss by a rounding error (or a small gap)
@@ -295,7 +304,7 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
         if (last == nullptr) continue;
         constexpr float kSpeculative = 1.0f;  // px
         const Shape b_back = placed_at(p.b, bb.position - kSpeculative * last->normal);
-        const Manifold back = collide(a, b_back);
+        const Manifold back = collide(placement(p.a).shape, b_back);
         if (!back.hit) continue;
         Manifold touching = back;
         touching.depth = 0.0f;
@@ -420,16 +429,11 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         if (friction_moved[i]) body_moved(i);
     }
-    // Each body's bounds, packed, so that the candidates that do not touch are turned away
-    // without reaching the placements (a superset test: overlaps() decides).
-    boxes.resize(slots.size());
-    for (const Pair& p : push_pairs) {
-        boxes[p.a] = placement(p.a).box;
-        boxes[p.b] = placement(p.b).box;
+    // `boxes` (each body's bounds, packed, from broadphase_pairs) turns away the candidates
+    // that do not touch without reaching the placements; friction moved some bodies since.
+    for (std::uint32_t i = 0; i < slots.size(); ++i) {
+        if (friction_moved[i]) boxes[i] = placement(i).box;
     }
-    const auto touch = [](const Aabb& a, const Aabb& b) {
-        return (a.max.x >= b.min.x) & (a.min.x <= b.max.x) & (a.max.y >= b.min.y) & (a.min.y <= b.max.y);
-    };
     // The next dirty position at or after `from` (marks ahead of the cursor are taken in this
     // pass, marks behind it in the next), or n_pairs.
     const auto next_dirty = [&](const std::vector<std::uint64_t>& bits, std::uint32_t from) {
