@@ -86,8 +86,7 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out)
     // Buckets: a power of two, about one per entry, filled by counting sort so that each
     // bucket lists its entries in ascending item order. A bucket may hold several cells.
     // Each entry carries what the pair test needs, so that test reads memory in order.
-    std::uint32_t buckets = 16;
-    while (buckets < entry_count) buckets *= 2;
+    const std::uint32_t buckets = static_cast<std::uint32_t>(std::bit_ceil(std::clamp<std::size_t>(entry_count, 16, 1u << 30)));
     const std::uint32_t mask = buckets - 1;
     starts_.assign(buckets + 1, 0);
     bucket_of_entry_.resize(entry_count);
@@ -126,9 +125,10 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out)
         const std::uint32_t begin = starts_[bucket];
         const std::uint32_t end = starts_[bucket + 1];
         if (end - begin < 2) continue;
-        const std::size_t most = std::size_t{end - begin} * (end - begin - 1) / 2;
-        if (keys_.size() < count + most) keys_.resize(2 * (count + most));
         for (std::uint32_t p = begin; p + 1 < end; ++p) {
+            // Room for every candidate of this entry (the buffer grows with the pairs found,
+            // not with the candidates tested).
+            if (keys_.size() < count + (end - p)) keys_.resize(2 * (count + (end - p)));
             const Entry& e = entries_[p];
             const std::uint64_t high = std::uint64_t{e.item} << bits;
             for (std::uint32_t q = p + 1; q < end; ++q) {
