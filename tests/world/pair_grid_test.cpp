@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "broadphase.h"  // engine/world/src (private)
@@ -135,6 +136,42 @@ TEST(PairGrid, PropertyEqualsBruteForce) {
     }
 }
 
+// Thousands of items (the radix sort takes three passes), crowded cells (many boxes much
+// smaller than the typical one, in one spot) and big items looked up through a query that
+// reports more than it must, twice.
+TEST(PairGrid, ManyItemsCrowdedCellsAndBigItemsThroughAQuery) {
+    Rng rng(11);
+    std::vector<GridItem> items;
+    std::uint32_t id = 0;
+    for (int k = 0; k < 6000; ++k) {
+        const bool crowd = k % 10 == 0;  // tiny boxes piled in one small square
+        const Vec2 c = crowd ? Vec2{rng.uniform(0.0f, 3.0f), rng.uniform(0.0f, 3.0f)}
+                             : Vec2{rng.uniform(-900.0f, 900.0f), rng.uniform(-900.0f, 900.0f)};
+        const Vec2 h = crowd ? Vec2{0.05f, 0.05f} : Vec2{rng.uniform(1.0f, 9.0f), rng.uniform(1.0f, 9.0f)};
+        items.push_back({box_at(c, h), id, rng.below(4) != 0});
+        id += 1 + rng.below(2);
+        if (k % 700 == 0) {  // a long wall now and then
+            items.push_back({box_at({rng.uniform(-500.0f, 500.0f), rng.uniform(-900.0f, 900.0f)}, {600, 2}), id, false});
+            id += 1;
+        }
+    }
+    const auto expected = brute_force(items);
+    PairGrid grid;
+    EXPECT_EQ(grid_pairs(grid, items), expected);
+    std::vector<GridPair> found;
+    grid.find(items, found, [&](const Aabb& box, const std::function<void(std::uint32_t)>& report) {
+        for (const GridItem& item : items) {
+            // Everything near the box, some twice, and ids that are not items.
+            if (item.box.min.x <= box.max.x + 5 && box.min.x - 5 <= item.box.max.x) report(item.id);
+            if (item.id % 3 == 0) report(item.id);
+        }
+        report(0xfffffff0u);
+    });
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
+    for (const GridPair& p : found) got.emplace_back(p.a, p.b);
+    EXPECT_EQ(got, expected);
+}
+
 // Over the broadphase's fat bounds the grid finds what a tree query from each moving body
 // finds (the set World::step used to build that way).
 TEST(PairGrid, SamePairsAsTreeQueriesOverFatBounds) {
@@ -145,7 +182,8 @@ TEST(PairGrid, SamePairsAsTreeQueriesOverFatBounds) {
         std::vector<bool> moving;
         const std::uint32_t n = 50 + rng.below(300);
         for (std::uint32_t i = 0; i < n; ++i) {
-            const Vec2 c{rng.uniform(0.0f, 400.0f), rng.uniform(0.0f, 300.0f)};
+            const float far = scene % 2 ? 1e6f : 400.0f;  // odd scenes spread far, some negative
+            const Vec2 c{rng.uniform(-far, far), rng.uniform(-far, 300.0f)};
             const Vec2 h{rng.uniform(0.5f, 12.0f), rng.uniform(0.5f, 12.0f)};
             proxy.push_back(tree.create(box_at(c, h), i));
             moving.push_back(rng.below(3) != 0);

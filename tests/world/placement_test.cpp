@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -176,6 +177,56 @@ TEST(Placement, WorldShapesFollowEveryChange) {
             }
         }
         check(step);
+    }
+}
+
+// The step's own cache (shape and bounds per body) must follow a new collider too: a static
+// box that grows under a resting ball pushes it out in the next step, and every body's
+// broadphase bounds hold its current shape after each setter.
+TEST(Placement, StepSeesAStaticColliderGrow) {
+    World world(WorldDesc{.gravity = {0, 0}});
+    const EntityId wall = world.create(EntityDesc{.position = {0, 0}, .collider = Collider::aabb({5, 5})});
+    const EntityId ball = world.create(
+        EntityDesc{.kind = BodyKind::dynamic, .position = {12, 0}, .collider = Collider::circle(4)});
+    for (int k = 0; k < 3; ++k) world.step(1.0f / 60.0f);  // apart: 3 px gap; nothing moves
+    ASSERT_EQ(world.get(ball)->position.x, 12.0f);
+    ASSERT_TRUE(world.set_collider(wall, Collider::aabb({10, 10})));  // now 2 px into the ball
+    world.step(1.0f / 60.0f);
+    EXPECT_GE(world.get(ball)->position.x, 14.0f - 0.01f);  // pushed out by the whole MTD
+    ASSERT_TRUE(world.set(wall, EntityDesc{.position = {0, 0}, .collider = Collider::box({20, 20}, {}, 0.3f)}));
+    world.step(1.0f / 60.0f);
+    EXPECT_FALSE(overlaps(world.shape_of(ball), world.shape_of(wall)) &&
+                 collide(world.shape_of(wall), world.shape_of(ball)).depth > 0.01f);
+}
+
+TEST(Placement, BroadphaseBoundsHoldTheShapeAfterEverySetter) {
+    World world(WorldDesc{.gravity = {0, 0}});
+    const std::vector<Collider> kinds = colliders();
+    std::vector<EntityId> ids;
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+        ids.push_back(world.create(EntityDesc{.kind = k % 2 ? BodyKind::static_body : BodyKind::dynamic,
+                                              .position = {30.0f * static_cast<float>(k), 0},
+                                              .collider = kinds[k]}));
+    }
+    const auto holds = [&](EntityId id) {
+        const std::optional<Aabb> fat = world.broadphase_bounds(id);
+        const Aabb tight = bounds(world.shape_of(id));
+        return fat && fat->min.x <= tight.min.x && fat->min.y <= tight.min.y && tight.max.x <= fat->max.x &&
+               tight.max.y <= fat->max.y;
+    };
+    Rng rng(5);
+    for (int round = 0; round < 50; ++round) {
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+            const EntityId id = ids[k];
+            switch ((round + static_cast<int>(k)) % 3) {
+                case 0: world.set_collider(id, kinds[rng.below(static_cast<std::uint32_t>(kinds.size()))]); break;
+                case 1: world.set_angle(id, rng.uniform(-3.0f, 3.0f)); break;
+                default: world.set_position(id, {rng.uniform(-100.0f, 100.0f), rng.uniform(-100.0f, 100.0f)});
+            }
+            ASSERT_TRUE(holds(id)) << "entity " << k << " in round " << round;
+        }
+        world.step(1.0f / 60.0f);
+        for (const EntityId id : ids) ASSERT_TRUE(holds(id)) << "after step " << round;
     }
 }
 

@@ -30,8 +30,9 @@ struct Slot {
 };
 
 // A slot's collider placed at its body's transform, kept while the body's position and
-// angle stay the same: both are compared by their bits on every use, so no code path can
-// see a stale shape, and a step places each collider once per position it takes.
+// angle stay the same: both are compared by their bits on every use, so a move or a turn
+// can never leave a stale shape; a new collider goes through turn(), which drops it. A step
+// places each collider once per position it takes.
 struct Placement {
     Vec2 position;  // the key first, next to the box: one cache line for both
     float angle = 0.0f;

@@ -6,6 +6,8 @@
 #include <bit>
 #include <cmath>
 
+#include "jostle/core/error.h"
+
 namespace jostle::detail {
 
 namespace {
@@ -39,17 +41,26 @@ bool touch(const Aabb& a, const Aabb& b) {
 
 }  // namespace
 
-void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out) {
+void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out) { find(items, out, BigQuery{}); }
+
+void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out, const BigQuery& big_query) {
     out.clear();
     const auto n = static_cast<std::uint32_t>(items.size());
     if (n < 2) return;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const Aabb& b = items[i].box;
+        JOSTLE_ASSERT(std::isfinite(b.min.x) && std::isfinite(b.min.y) && std::isfinite(b.max.x) &&
+                          std::isfinite(b.max.y) && b.min.x <= b.max.x && b.min.y <= b.max.y,
+                      "PairGrid: boxes must be finite with min <= max");
+        JOSTLE_ASSERT(i == 0 || items[i - 1].id < items[i].id, "PairGrid: ids must ascend");
+    }
 
     // Cell size: about a typical box's larger extent. Then each box spans about four cells
     // and each cell holds about as many boxes as touch one. Typical: the mean of the extents
     // up to four times the plain mean, so that a few long walls do not set it.
-    const auto extent = [&](std::uint32_t i) {
+    const auto extent = [&](std::uint32_t i) {  // in double: a finite box can be wider than FLT_MAX
         const Aabb& b = items[i].box;
-        return static_cast<double>(std::fmax(b.max.x - b.min.x, b.max.y - b.min.y));
+        return std::fmax(static_cast<double>(b.max.x) - b.min.x, static_cast<double>(b.max.y) - b.min.y);
     };
     double sum = 0.0;
     for (std::uint32_t i = 0; i < n; ++i) sum += extent(i);
@@ -141,14 +152,29 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out)
         }
     }
     keys_.resize(count);
-    // Big items against every other item (two big ones once, from the lower).
-    for (const std::uint32_t i : big_) {
-        for (std::uint32_t j = 0; j < n; ++j) {
-            if (j == i || (j < i && cells_[j].x0 > cells_[j].x1)) continue;
-            if ((items[i].active || items[j].active) && touch(items[i].box, items[j].box)) {
-                keys_.push_back(i < j ? (std::uint64_t{i} << bits) | j : (std::uint64_t{j} << bits) | i);
-            }
+    // Big items against every item they may touch (two big ones once, from the lower):
+    // looked up through big_query when there is one, else tested against all.
+    const auto big = [&](std::uint32_t j) { return cells_[j].x0 > cells_[j].x1; };
+    const auto pair_with = [&](std::uint32_t i, std::uint32_t j) {
+        if (j == i || (j < i && big(j))) return;
+        if ((items[i].active || items[j].active) && touch(items[i].box, items[j].box)) {
+            keys_.push_back(i < j ? (std::uint64_t{i} << bits) | j : (std::uint64_t{j} << bits) | i);
         }
+    };
+    for (const std::uint32_t i : big_) {
+        if (!big_query) {
+            for (std::uint32_t j = 0; j < n; ++j) pair_with(i, j);
+            continue;
+        }
+        const std::size_t first = keys_.size();
+        big_query(items[i].box, [&](std::uint32_t id) {
+            const auto it = std::lower_bound(items.begin(), items.end(), id,
+                                             [](const GridItem& item, std::uint32_t v) { return item.id < v; });
+            if (it != items.end() && it->id == id) pair_with(i, static_cast<std::uint32_t>(it - items.begin()));
+        });
+        // A query may report an item twice; keep each pair once.
+        std::sort(keys_.begin() + static_cast<std::ptrdiff_t>(first), keys_.end());
+        keys_.erase(std::unique(keys_.begin() + static_cast<std::ptrdiff_t>(first), keys_.end()), keys_.end());
     }
     sort_keys(2 * bits);
     out.resize(keys_.size());

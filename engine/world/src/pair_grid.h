@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -35,6 +36,12 @@ public:
     // must come in ascending id order. Exact whatever the grid: the grid only decides which
     // pairs are tested.
     void find(std::span<const GridItem> items, std::vector<GridPair>& out);
+    // The same, with big items (those spanning more than 64 cells: long walls) looked up
+    // through big_query(box, found), which must call found(id) for every item whose box
+    // overlaps `box` (more is fine: each is tested; unknown ids are ignored), instead of
+    // being tested against every item. The world passes its b2DynamicTree's query.
+    using BigQuery = std::function<void(const Aabb& box, const std::function<void(std::uint32_t id)>& found)>;
+    void find(std::span<const GridItem> items, std::vector<GridPair>& out, const BigQuery& big_query);
 
 private:
     struct Cells {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "internal.h"
@@ -242,17 +243,43 @@ void World::Impl::integrate(float dt) {
 
 std::vector<Pair> World::Impl::broadphase_pairs() {
     // Every collider but bullets' (they only cast), at its fat bounds; a pair needs one side
-    // that moves. The pairs are those whose fat bounds overlap: the tree's query from each
-    // moving body would find the same ones (the grid only finds them faster, all at once).
+    // that moves. The pairs are those whose fat bounds overlap, found either by a tree query
+    // from each moving body or, faster when many things move, all at once by the grid: the
+    // same pairs either way (tests/world/pair_grid_test.cpp).
     grid_items.clear();
     boxes.resize(slots.size());
+    std::size_t moving = 0;
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         const Slot& s = slots[i];
         if (!s.alive || s.proxy < 0 || s.body.kind == BodyKind::bullet) continue;
-        grid_items.push_back({broadphase.fat_bounds(s.proxy), i, detail::is_moving_kind(s.body.kind)});
+        const bool moves = detail::is_moving_kind(s.body.kind);
+        grid_items.push_back({broadphase.fat_bounds(s.proxy), i, moves});
+        moving += moves ? 1 : 0;
         boxes[i] = placement(i).box;  // for the narrowphase and resolve
     }
-    pair_grid.find(grid_items, grid_pairs);
+    grid_pairs.clear();
+    if (moving * 16 < grid_items.size()) {
+        // Few movers among many static colliders (a tile map): a tree query from each mover
+        // costs less than gridding every tile.
+        for (std::uint32_t i = 0; i < slots.size(); ++i) {
+            const Slot& s = slots[i];
+            if (!s.alive || s.proxy < 0 || !detail::is_moving_kind(s.body.kind)) continue;
+            broadphase.query(broadphase.fat_bounds(s.proxy), [&](std::uint32_t j) {
+                // Two moving bodies find each other twice; keep the pair once.
+                if (j == i || slots[j].body.kind == BodyKind::bullet || (detail::is_moving_kind(slots[j].body.kind) && j < i)) {
+                    return;
+                }
+                grid_pairs.push_back({std::min(i, j), std::max(i, j)});
+            });
+        }
+        std::sort(grid_pairs.begin(), grid_pairs.end(),
+                  [](const detail::GridPair& x, const detail::GridPair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+    } else {
+        // Big items (long walls) are looked up in the tree rather than tested against all.
+        pair_grid.find(grid_items, grid_pairs, [&](const Aabb& box, const std::function<void(std::uint32_t)>& found) {
+            broadphase.query(box, [&](std::uint32_t j) { found(j); });
+        });
+    }
     std::vector<Pair> pairs;
     pairs.reserve(grid_pairs.size());
     for (const detail::GridPair& g : grid_pairs) {
@@ -377,10 +404,12 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
 
     // Position: relaxation passes along the MTD, recomputed from the current positions, over
     // every candidate pair (a push can make a new overlap). A pair that pushed nothing when
-    // last looked at, and neither of whose bodies has moved since, would push nothing again,
-    // so each pass looks only at the pairs marked dirty: those that pushed last time, and
-    // those with a body that moved since they were looked at. Same pushes in the same order
-    // as testing every pair every pass, without re-testing the many that do not touch.
+    // last looked at, and neither of whose bodies has moved since, would push nothing again
+    // (its manifold depends only on the two positions, and shock propagation only ever sets
+    // a mass to zero), so each pass looks only at the pairs marked dirty: those that pushed
+    // last time, and those with a body that moved since they were looked at. Same pushes in
+    // the same order as testing every pair every pass, without re-testing the many that do
+    // not touch.
     const auto n_pairs = static_cast<std::uint32_t>(push_pairs.size());
     std::vector<std::uint32_t> ground_up(n_pairs);
     for (std::uint32_t k = 0; k < n_pairs; ++k) ground_up[k] = k;
@@ -466,6 +495,8 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             const float k_sum = ima + imb;
             if (!(k_sum > 0.0f)) continue;  // under shock propagation only a mass can drop to 0
             const Vec2 mtd = m.depth * m.normal;  // moves B out of A
+            const Vec2 a_before = slots[p.a].body.position;
+            const Vec2 b_before = slots[p.b].body.position;
             Vec2 push_a = (ima / k_sum) * mtd;
             if (std::holds_alternative<PlacedMask>(a) || std::holds_alternative<PlacedMask>(b)) {
                 // Mask MTDs are whole pixels, and so is each body's share of one.
@@ -476,10 +507,15 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
                 slots[p.b].body.position += (imb / k_sum) * mtd;
             }
             slots[p.a].body.position -= push_a;
-            body_moved(p.a);  // marks this pair too: it is looked at again next pass
-            body_moved(p.b);
-            boxes[p.a] = placement(p.a).box;
-            boxes[p.b] = placement(p.b).box;
+            // This pair is looked at again next pass; the other pairs of a body only if the
+            // push moved it (an immovable floor under a crowd keeps its many pairs clean).
+            set_dirty(k);
+            for (const auto& [i, before] : {std::pair{p.a, a_before}, std::pair{p.b, b_before}}) {
+                const Vec2 now = slots[i].body.position;
+                if (std::bit_cast<std::uint64_t>(now) == std::bit_cast<std::uint64_t>(before)) continue;
+                body_moved(i);
+                boxes[i] = placement(i).box;
+            }
             deepest = std::fmax(deepest, m.depth);
         }
         if (deepest <= 0.5f * desc.slop) break;

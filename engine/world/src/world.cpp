@@ -195,40 +195,42 @@ std::vector<EntityId> World::entities() const {
 }
 
 namespace {
+// Changes an entity, then brings its turned collider (when the collider or angle may have
+// changed) and its broadphase proxy up to date.
 template <typename F>
-bool change(World::Impl& impl, EntityId id, F&& f) {
+bool change(World::Impl& impl, EntityId id, bool turns, F&& f) {
     detail::Slot* s = impl.find(id);
     if (s == nullptr) return false;
     f(*s);
-    impl.turn(id.index);
+    if (turns) impl.turn(id.index);
     impl.sync_proxy(id.index);
     return true;
 }
 }  // namespace
 
 bool World::set_position(EntityId id, Vec2 position) {
-    return change(*impl_, id, [&](detail::Slot& s) { s.body.position = position; });
+    return change(*impl_, id, false, [&](detail::Slot& s) { s.body.position = position; });
 }
 bool World::set_angle(EntityId id, float angle) {
-    return change(*impl_, id, [&](detail::Slot& s) { s.body.angle = angle; });
+    return change(*impl_, id, true, [&](detail::Slot& s) { s.body.angle = angle; });
 }
 bool World::set_velocity(EntityId id, Vec2 velocity) {
-    return change(*impl_, id, [&](detail::Slot& s) { s.body.velocity = velocity; });
+    return change(*impl_, id, false, [&](detail::Slot& s) { s.body.velocity = velocity; });
 }
 bool World::set_angular_velocity(EntityId id, float angular_velocity) {
-    return change(*impl_, id, [&](detail::Slot& s) { s.body.angular_velocity = angular_velocity; });
+    return change(*impl_, id, false, [&](detail::Slot& s) { s.body.angular_velocity = angular_velocity; });
 }
 bool World::set_collider(EntityId id, const Collider& collider) {
-    return change(*impl_, id, [&](detail::Slot& s) {
+    return change(*impl_, id, true, [&](detail::Slot& s) {
         s.body.collider = collider;
         s.mask_fingerprint = fingerprint(collider);
     });
 }
 bool World::set_user_data(EntityId id, std::uint64_t user_data) {
-    return change(*impl_, id, [&](detail::Slot& s) { s.body.user_data = user_data; });
+    return change(*impl_, id, false, [&](detail::Slot& s) { s.body.user_data = user_data; });
 }
 bool World::set(EntityId id, const EntityDesc& desc) {
-    return change(*impl_, id, [&](detail::Slot& s) {
+    return change(*impl_, id, true, [&](detail::Slot& s) {
         s.body = desc;
         s.mask_fingerprint = fingerprint(desc.collider);
     });
