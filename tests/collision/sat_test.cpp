@@ -85,6 +85,51 @@ TEST(SatObb, Containment) {
     EXPECT_TRUE(is_hit(collide(Obb{{4, 0}, {0.5f, 0.5f}, 0.0f}, Obb{{0, 0}, {5, 5}, 0.0f}), 1.5f, {-1, 0}));
 }
 
+TEST(SatObb, TiedAxesGiveTheFirstAxisOfA) {
+    // B at (1,1), both half (1,1): every axis needs a push of 1 (A's x, A's y, B's x, B's y).
+    // The axes are tested side by side; the first of the tied ones, A's x, must still win.
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{1, 1}, {1, 1}, 0.0f}), 1.0f, {1, 0}));
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{-1, 1}, {1, 1}, 0.0f}), 1.0f, {-1, 0}));
+    // B turned a quarter turn (its axes are A's y and -x, up to rounding): A's x needs 0.5,
+    // every other axis 1.
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{1.5f, 1}, {1, 1}, kPi / 2}), 0.5f, {1, 0}, 1e-6f));
+    // A = 6x2 box, B = 2x6 box 1.5 below: x axes need 4, A's y and B's y both 2.5.
+    const Manifold m = collide(Obb{{0, 0}, {3, 1}, 0.0f}, Obb{{0, 1.5f}, {1, 3}, 0.0f});
+    EXPECT_TRUE(is_hit(m, 2.5f, {0, 1}));
+}
+
+TEST(SatObb, NonFiniteOrMalformedBoxesMissWhateverTheField) {
+    // Each field of either box in turn: NaN, +inf and -inf are a miss, and so is a negative
+    // half extent (the boxes' validity is tested without a branch per field).
+    const float bad[] = {NAN, INFINITY, -INFINITY};
+    for (const float v : bad) {
+        for (int field = 0; field < 5; ++field) {
+            Obb b{{0.5f, 0.5f}, {1, 1}, 0.25f};
+            if (field == 0) b.center.x = v;
+            if (field == 1) b.center.y = v;
+            if (field == 2) b.half.x = v;
+            if (field == 3) b.half.y = v;
+            if (field == 4) b.set_angle(v);
+            SCOPED_TRACE(field);
+            EXPECT_TRUE(is_miss(collide(kUnitBox, b)));
+            EXPECT_TRUE(is_miss(collide(b, kUnitBox)));
+            EXPECT_TRUE(is_miss(collide(Aabb{{-1, -1}, {1, 1}}, b)));
+            EXPECT_EQ(contacts(b, kUnitBox).count, 0);
+            EXPECT_TRUE(is_miss(contacts(kUnitBox, b).manifold));
+            EXPECT_TRUE(is_miss(collide(b, Circle{{0, 0}, 1})));
+        }
+    }
+    EXPECT_TRUE(is_miss(collide(kUnitBox, Obb{{0, 0}, {-1, 1}, 0.0f})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, 0}, {1, -0.5f}, 0.0f}, kUnitBox)));
+    // A zero-size box is a point: a hit inside, a miss outside.
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{0.5f, 0}, {0, 0}, 0.0f}), 0.5f, {1, 0}));
+    EXPECT_TRUE(is_miss(collide(kUnitBox, Obb{{1.5f, 0}, {0, 0}, 0.3f})));
+    // Boxes at the limits of float, whose pushes overflow: a defined result, never NaN.
+    const Manifold huge = collide(Obb{{0, 0}, {3e38f, 3e38f}, 0.0f}, Obb{{0, 0}, {3e38f, 3e38f}, 0.0f});
+    EXPECT_FALSE(std::isnan(huge.depth));
+    EXPECT_FALSE(std::isnan(huge.normal.x) || std::isnan(huge.normal.y));
+}
+
 TEST(SatAabbObb, MatchesTheObbOfTheSameBox) {
     const Aabb a{{0, 0}, {2, 2}};
     // The diamond cases from EarlyExitMustNotStopAtOverlappingAxes.

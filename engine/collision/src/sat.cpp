@@ -1,6 +1,7 @@
 // Oriented boxes and convex polygons by the separating axis theorem, slides 09-35 to 09-69:
 // project both shapes on each candidate axis (the edge normals), stop at the first axis
 // with a gap, otherwise push along the axis that needs the least push.
+#include <bit>
 #include <cmath>
 
 #include "internal.h"
@@ -75,32 +76,50 @@ detail::ConvexView view_of(const detail::SegmentAxes& s, Vec2 offset = {}) {
 // 09-58 with the boxes' own axes: 2 + 2 candidate axes. A box's projection on an axis u is
 // its centre's projection plus-minus the projected radius hx |ux.u| + hy |uy.u|, so no
 // corner is projected one by one. d is B's centre minus A's centre.
+//
+// The four axes are computed side by side (GCC's portable vector extension, one lane per
+// axis, each lane exactly the scalar arithmetic), and one test of the four lanes replaces the
+// slides' early exit per axis (09-50): a gap on any axis is a miss. Only a hit picks its axis,
+// in axis order as the loop did (a later axis wins only when strictly smaller), so the results
+// are the same bit for bit.
 struct BoxBox {
     Manifold manifold;
     int axis = 0;          // the MTD's axis: 0, 1 A's x and y, 2, 3 B's x and y
     bool positive = true;  // the normal is +axis (or -axis)
 };
 
-BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
-    const Vec2 axes[4] = {{qa.c, qa.s}, {-qa.s, qa.c}, {qb.c, qb.s}, {-qb.s, qb.c}};
+inline BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
+    using detail::Float4;
+    using detail::Int4;
+    // The axes: A's x and y, B's x and y.
+    const Float4 ux = {qa.c, -qa.s, qb.c, -qb.s};
+    const Float4 uy = {qa.s, qa.c, qb.s, qb.c};
     // |cos| of the angles between A's axes (rows) and B's (columns): a box's projected radius
     // on the other's axis. On its own axes a box's radius is its half extent.
-    const float c00 = std::fabs(dot(axes[0], axes[2])), c01 = std::fabs(dot(axes[0], axes[3]));
-    const float c10 = std::fabs(dot(axes[1], axes[2])), c11 = std::fabs(dot(axes[1], axes[3]));
-    const float radius_a[4] = {half_a.x, half_a.y, half_a.x * c00 + half_a.y * c10, half_a.x * c01 + half_a.y * c11};
-    const float radius_b[4] = {half_b.x * c00 + half_b.y * c01, half_b.x * c10 + half_b.y * c11, half_b.x, half_b.y};
+    const float c00 = std::fabs(qa.c * qb.c + qa.s * qb.s), c01 = std::fabs(qa.c * -qb.s + qa.s * qb.c);
+    const float c10 = std::fabs(-qa.s * qb.c + qa.c * qb.s), c11 = std::fabs(-qa.s * -qb.s + qa.c * qb.c);
+    const Float4 radius_a = {half_a.x, half_a.y, half_a.x * c00 + half_a.y * c10, half_a.x * c01 + half_a.y * c11};
+    const Float4 radius_b = {half_b.x * c00 + half_b.y * c01, half_b.x * c10 + half_b.y * c11, half_b.x, half_b.y};
+    const Float4 r = radius_a + radius_b;
+    const Float4 s = ux * d.x + uy * d.y;  // dot(d, u) per axis
+    const Float4 push_pos = r - s;         // moving A by -push_pos u separates (normal u)
+    const Float4 push_neg = r + s;         // moving A by +push_neg u separates (normal -u)
+    // detail::consider_axis lane by lane: a gap (or NaN) on any axis is a miss.
+    if (detail::lane_bits((push_pos >= 0.0f) & (push_neg >= 0.0f)) != 15) return {};
+    const Int4 pos = push_pos <= push_neg;
+    const Float4 push = pos ? push_pos : push_neg;  // 09-60: the smaller push of each axis
     float best = INFINITY;
-    Vec2 best_normal{1.0f, 0.0f};
+    for (int i = 0; i < 4; ++i) best = push[i] < best ? push[i] : best;
     BoxBox out;
-    for (int i = 0; i < 4; ++i) {
-        const Vec2 u = axes[i];
-        const float ra = radius_a[i], rb = radius_b[i];
-        const float s = dot(d, u);
-        const float before = best;
-        if (!detail::consider_axis(u, ra + rb - s, ra + rb + s, best, best_normal)) return {};
-        if (best != before) { out.axis = i; out.positive = best_normal == u; }
+    if (best == INFINITY) {  // every push overflowed: no axis taken, normal {1, 0}
+        out.manifold = detail::hit_with(best, {1.0f, 0.0f});
+        return out;
     }
-    out.manifold = detail::hit_with(best, best_normal);
+    // The first axis whose push is the least (a later one wins only when strictly smaller).
+    out.axis = std::countr_zero(detail::lane_bits(push == best));
+    out.positive = pos[out.axis] != 0;
+    const Vec2 u{ux[out.axis], uy[out.axis]};
+    out.manifold = detail::hit_with(best, out.positive ? u : -u);
     return out;
 }
 }  // namespace
@@ -129,10 +148,9 @@ struct FaceSeparation {
     int face = 0;
 };
 
-// Four faces side by side: GCC's portable vector extension, one instruction for four lanes
-// where the target has SIMD and plain code where not. Each lane does exactly the scalar
-// arithmetic of one face, so the results are the same bit for bit.
-using Float4 = float __attribute__((vector_size(16)));
+// Four faces side by side (detail::Float4): each lane does exactly the scalar arithmetic of
+// one face, so the results are the same bit for bit.
+using detail::Float4;
 
 // The largest separation of the point set `others` from the faces of a polygon (its points
 // and outward normals): for face i, min over the others of dot(n_i, o - p_i) (09-51: the
@@ -289,7 +307,7 @@ ContactSet contacts(const Obb& a, const Obb& b) {
     // The MTD of collide(a, b), then its face on the box that owns the axis: CentredBox's
     // faces 0..3 have normals -y, +x, +y, -x of the box. Solved around A's centre, where both
     // boxes' corners are precise; the points are moved back.
-    if (!valid(a) || !valid(b)) return {};
+    if (!(valid(a) & valid(b))) return {};
     const Vec2 d = b.center - a.center;
     const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), d);
     if (!bb.manifold.hit) return {};
@@ -304,14 +322,14 @@ ContactSet contacts(const Obb& a, const Obb& b) {
 }
 
 Manifold collide(const Obb& a, const Obb& b) {
-    if (!valid(a) || !valid(b)) return {};
+    if (!(valid(a) & valid(b))) return {};
     return box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center).manifold;
 }
 
 Manifold collide(const Aabb& a, const Obb& b) {
     // The AABB as a box at angle 0. Its centre (min + max) / 2 may not be a float far from
     // the origin, so the offset is formed from differences instead.
-    if (!valid(a) || !valid(b)) return {};
+    if (!(valid(a) & valid(b))) return {};
     const Vec2 half = (a.max - a.min) * 0.5f;
     return box_box(half, Rot{}, b.half, b.rotation(), (b.center - a.min) - half).manifold;
 }
