@@ -205,6 +205,36 @@ TEST(ObbCircle, QuarterTurnBox) {
     EXPECT_TRUE(is_miss(collide(box, Circle{{0, 3.1f}, 1})));
 }
 
+TEST(ObbCircle, InvalidShapesMissEvenWhereTheArithmeticWouldHit) {
+    // The shapes are checked only for an answer that would be a hit; these would all be one
+    // without the check (a negative radius inside the box, an infinite radius far away, a
+    // negative or non-finite half extent or angle around the centre).
+    const Obb box{{0, 0}, {2, 1}, 0.3f};
+    EXPECT_TRUE(is_miss(collide(box, Circle{{0, 0}, -0.5f})));
+    EXPECT_TRUE(is_miss(collide(box, Circle{{100, 0}, INFINITY})));
+    EXPECT_TRUE(is_miss(collide(box, Circle{{0, 0}, NAN})));
+    EXPECT_TRUE(is_miss(collide(box, Circle{{NAN, 0}, 1})));
+    EXPECT_TRUE(is_miss(collide(box, Circle{{INFINITY, 0}, INFINITY})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, 0}, {-2, 1}, 0.3f}, Circle{{0, 0}, 0.5f})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, 0}, {2, INFINITY}, 0.3f}, Circle{{0, 0}, 0.5f})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, 0}, {2, 1}, INFINITY}, Circle{{0, 0}, 0.5f})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, -INFINITY}, {2, 1}, 0.0f}, Circle{{0, 0}, 0.5f})));
+    // And the same shapes, valid, hit: centre inside (depth 1 + 0.5 through the y face).
+    EXPECT_TRUE(is_hit(collide(Obb{{0, 0}, {2, 1}, 0.0f}, Circle{{0, 0}, 0.5f}), 1.5f, {0, -1}));
+}
+
+TEST(ObbCircle, CentreOnAFaceACornerAndSignedZeros) {
+    // The clamp (a min then a max) on the boundary: a centre on the face or at a corner is
+    // inside (distance 0) and leaves through the nearest face; -0 is the same point as 0.
+    const Obb box{{0, 0}, {2, 1}, 0.0f};
+    EXPECT_TRUE(is_hit(collide(box, Circle{{2, 0}, 0.5f}), 0.5f, {1, 0}));
+    EXPECT_TRUE(is_hit(collide(box, Circle{{2, 1}, 0.5f}), 0.5f, {1, 0}));
+    EXPECT_TRUE(is_hit(collide(box, Circle{{-0.0f, -1}, 0.25f}), 0.25f, {0, -1}));
+    EXPECT_TRUE(is_hit(collide(box, Circle{{-2, -0.0f}, 0}), 0.0f, {-1, 0}));
+    // Just outside the corner along the diagonal: distance sqrt2 / 100.
+    EXPECT_TRUE(is_hit(collide(box, Circle{{2.01f, 1.01f}, 0.02f}), 0.02f - 0.01f * kSqrt2, {1 / kSqrt2, 1 / kSqrt2}, 1e-4f));
+}
+
 TEST(SegmentCircle, ClosestPointInTheMiddle) {
     // Segment (0,0)-(10,0), circle (4,1) r 2: p = (4,0), |p - c| = 1, depth 1. Normal segment ->
     // circle (0,1). 09-88: the segment's MTD is along p - c = (0,-1), length r - 1 = 1.

@@ -100,10 +100,19 @@ Manifold collide_sat(const Polygon& a, const Circle& b) {
     return hit_with(best, best_normal);
 }
 
-Manifold detail::box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
+namespace {
+// The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in"). Here, not
+// behind a call, so that the box and circle pairs compile into one function each.
+inline Manifold box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
     // 09-102: "push in" the centre to find the closest point q of the box. A centre outside
     // leaves along c - q; a centre inside (or on the boundary, where c - q is zero or too
     // small to have a direction) is pushed out through the nearest face.
+    // The clamp as a min then a max (MINSS/MAXSS, no branch on where the centre lies). With
+    // lo <= hi it gives detail::clamp's value bit for bit, also for -0 and NaN.
+    const auto clamp = [](float v, float l, float h) {
+        const float t = h < v ? h : v;
+        return l > t ? l : t;
+    };
     const Vec2 q{clamp(c.x, lo.x, hi.x), clamp(c.y, lo.y, hi.y)};
     const Vec2 d = c - q;
     const float dist2 = dot(d, d);
@@ -119,19 +128,23 @@ Manifold detail::box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
     if (hi.y - c.y < depth) { depth = hi.y - c.y; normal = {0.0f, 1.0f}; }
     return hit_with(depth + r, normal);
 }
+}  // namespace
 
 Manifold collide(const Aabb& a, const Circle& b) {
     if (!valid(a) || !valid(b)) return {};
-    return detail::box_circle(a.min, a.max, b.center, b.radius);
+    return box_circle(a.min, a.max, b.center, b.radius);
 }
 
 Manifold collide(const Obb& a, const Circle& b) {
-    // The clamp in the box's own frame, then the normal turned back.
-    if (!valid(a) || !valid(b)) return {};
+    // The clamp in the box's own frame, then the normal turned back. The shapes are checked
+    // only when the answer would be a hit: an invalid shape is a miss, so a miss needs no
+    // check (the arithmetic on any input is defined, only the answer would be wrong).
     const Rot q = a.rotation();
     const Vec2 local = inv_rotate(q, b.center - a.center);
-    Manifold m = detail::box_circle(-a.half, a.half, local, b.radius);
-    if (m.hit) m.normal = detail::plain_zeros(rotate(q, m.normal));
+    Manifold m = box_circle(-a.half, a.half, local, b.radius);
+    if (!m.hit) return m;
+    if (!(valid(a) & valid(b))) return {};
+    m.normal = detail::plain_zeros(rotate(q, m.normal));
     return m;
 }
 

@@ -173,9 +173,6 @@ struct SegmentAxes {
 };
 SegmentAxes segment_axes(const Segment& s);
 
-// The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in").
-Manifold box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r);
-
 // floor/ceil results as pixel indices, clamped first so that a far-off float or NaN never
 // reaches an int conversion.
 inline int pixel_index(float v) {
