@@ -69,6 +69,16 @@ inline Vec2 plain_zeros(Vec2 v) { return {v.x + 0.0f, v.y + 0.0f}; }
 using Float4 = float __attribute__((vector_size(16)));
 using Int4 = int __attribute__((vector_size(16)));
 
+// |v| and v with the signs of `signs` flipped, lane by lane (bit operations, as std::fabs and
+// negation are).
+inline Float4 bit_xor(Float4 v, Float4 signs) {
+    return reinterpret_cast<Float4>(reinterpret_cast<Int4>(v) ^ reinterpret_cast<Int4>(signs));
+}
+inline Float4 abs(Float4 v) {
+    const Int4 magnitude = {0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff};
+    return reinterpret_cast<Float4>(reinterpret_cast<Int4>(v) & magnitude);
+}
+
 // Bit i set when lane i of a comparison's result is true (one MOVMSKPS on x86).
 inline unsigned lane_bits(Int4 m) {
 #if defined(__SSE__)

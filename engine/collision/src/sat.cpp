@@ -92,14 +92,23 @@ inline BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
     using detail::Float4;
     using detail::Int4;
     // The axes: A's x and y, B's x and y.
-    const Float4 ux = {qa.c, -qa.s, qb.c, -qb.s};
-    const Float4 uy = {qa.s, qa.c, qb.s, qb.c};
-    // |cos| of the angles between A's axes (rows) and B's (columns): a box's projected radius
-    // on the other's axis. On its own axes a box's radius is its half extent.
-    const float c00 = std::fabs(qa.c * qb.c + qa.s * qb.s), c01 = std::fabs(qa.c * -qb.s + qa.s * qb.c);
-    const float c10 = std::fabs(-qa.s * qb.c + qa.c * qb.s), c11 = std::fabs(-qa.s * -qb.s + qa.c * qb.c);
-    const Float4 radius_a = {half_a.x, half_a.y, half_a.x * c00 + half_a.y * c10, half_a.x * c01 + half_a.y * c11};
-    const Float4 radius_b = {half_b.x * c00 + half_b.y * c01, half_b.x * c10 + half_b.y * c11, half_b.x, half_b.y};
+    const Float4 q = {qa.c, qa.s, qb.c, qb.s};
+    const Float4 flip = {0.0f, -0.0f, 0.0f, -0.0f};  // XOR with -0 negates
+    const Float4 ux = detail::bit_xor(__builtin_shufflevector(q, q, 0, 1, 2, 3), flip);  // c, -s, c, -s
+    const Float4 uy = __builtin_shufflevector(q, q, 1, 0, 3, 2);                          // s, c, s, c
+    // |cos| of the angles between A's axes (rows) and B's (columns), dot(A_i, B_j) lane by
+    // lane {00, 01, 10, 11}: a box's projected radius on the other's axis. On its own axes a
+    // box's radius is its half extent.
+    const Float4 cosines = detail::abs(__builtin_shufflevector(ux, ux, 0, 0, 1, 1) * __builtin_shufflevector(ux, ux, 2, 3, 2, 3) +
+                                       __builtin_shufflevector(uy, uy, 0, 0, 1, 1) * __builtin_shufflevector(uy, uy, 2, 3, 2, 3));
+    const Float4 ha = {half_a.x, half_a.x, half_a.y, half_a.y}, hb = {half_b.x, half_b.y, half_b.x, half_b.y};
+    const Float4 ta = ha * cosines;  // hax c00, hax c01, hay c10, hay c11
+    const Float4 tb = hb * cosines;  // hbx c00, hby c01, hbx c10, hby c11
+    // A: hax, hay on its own axes, hax c00 + hay c10 and hax c01 + hay c11 on B's; B: hbx c00 +
+    // hby c01 and hbx c10 + hby c11 on A's axes, hbx, hby on its own.
+    const Float4 radius_a = __builtin_shufflevector(ha, ta + __builtin_shufflevector(ta, ta, 2, 3, 2, 3), 0, 2, 4, 5);
+    const Float4 radius_b = __builtin_shufflevector(
+        __builtin_shufflevector(tb, tb, 0, 2, 0, 2) + __builtin_shufflevector(tb, tb, 1, 3, 1, 3), hb, 0, 1, 4, 5);
     const Float4 r = radius_a + radius_b;
     const Float4 s = ux * d.x + uy * d.y;  // dot(d, u) per axis
     const Float4 push_pos = r - s;         // moving A by -push_pos u separates (normal u)
@@ -307,10 +316,9 @@ ContactSet contacts(const Obb& a, const Obb& b) {
     // The MTD of collide(a, b), then its face on the box that owns the axis: CentredBox's
     // faces 0..3 have normals -y, +x, +y, -x of the box. Solved around A's centre, where both
     // boxes' corners are precise; the points are moved back.
-    if (!(valid(a) & valid(b))) return {};
     const Vec2 d = b.center - a.center;
     const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), d);
-    if (!bb.manifold.hit) return {};
+    if (!bb.manifold.hit || !(valid(a) & valid(b))) return {};
     // A's face has the normal's direction; B's the opposite one.
     const bool a_face = bb.axis < 2;
     const bool outward_positive = a_face ? bb.positive : !bb.positive;
@@ -322,8 +330,12 @@ ContactSet contacts(const Obb& a, const Obb& b) {
 }
 
 Manifold collide(const Obb& a, const Obb& b) {
-    if (!(valid(a) & valid(b))) return {};
-    return box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center).manifold;
+    // The boxes are checked only for an answer that would be a hit: an invalid box is a miss,
+    // so a miss needs no check (the arithmetic on any input is defined, only the answer would
+    // be wrong).
+    const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center);
+    if (!bb.manifold.hit || !(valid(a) & valid(b))) return {};
+    return bb.manifold;
 }
 
 Manifold collide(const Aabb& a, const Obb& b) {
