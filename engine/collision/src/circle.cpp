@@ -143,7 +143,7 @@ Manifold collide(const Obb& a, const Circle& b) {
     const Vec2 local = inv_rotate(q, b.center - a.center);
     Manifold m = box_circle(-a.half, a.half, local, b.radius);
     if (!m.hit) return m;
-    if (!(valid(a) & valid(b))) return {};
+    if (!(valid(a) && valid(b))) return {};
     m.normal = detail::plain_zeros(rotate(q, m.normal));
     return m;
 }

@@ -318,7 +318,7 @@ ContactSet contacts(const Obb& a, const Obb& b) {
     // boxes' corners are precise; the points are moved back.
     const Vec2 d = b.center - a.center;
     const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), d);
-    if (!bb.manifold.hit || !(valid(a) & valid(b))) return {};
+    if (!bb.manifold.hit || !(valid(a) && valid(b))) return {};
     // A's face has the normal's direction; B's the opposite one.
     const bool a_face = bb.axis < 2;
     const bool outward_positive = a_face ? bb.positive : !bb.positive;
@@ -334,14 +334,14 @@ Manifold collide(const Obb& a, const Obb& b) {
     // so a miss needs no check (the arithmetic on any input is defined, only the answer would
     // be wrong).
     const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center);
-    if (!bb.manifold.hit || !(valid(a) & valid(b))) return {};
+    if (!bb.manifold.hit || !(valid(a) && valid(b))) return {};
     return bb.manifold;
 }
 
 Manifold collide(const Aabb& a, const Obb& b) {
     // The AABB as a box at angle 0. Its centre (min + max) / 2 may not be a float far from
     // the origin, so the offset is formed from differences instead.
-    if (!(valid(a) & valid(b))) return {};
+    if (!(valid(a) && valid(b))) return {};
     const Vec2 half = (a.max - a.min) * 0.5f;
     return box_box(half, Rot{}, b.half, b.rotation(), (b.center - a.min) - half).manifold;
 }
