@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "test_shapes.h"
 
@@ -146,6 +148,47 @@ TEST(PolygonCircle, ZeroRadius) {
     expect_polygon_circle(test::box_polygon(0, 0, 4, 4), Circle{{1, 2}, 0}, 1.0f, {-1, 0});
     EXPECT_TRUE(is_miss(collide(test::box_polygon(0, 0, 4, 4), Circle{{5, 2}, 0})));
     EXPECT_TRUE(is_miss(collide_sat(test::box_polygon(0, 0, 4, 4), Circle{{5, 2}, 0})));
+}
+
+TEST(PolygonCircle, EveryVertexCountAndTiedFaces) {
+    // The faces are measured two at a time (3..16 vertices, odd counts with a spare lane); a
+    // centre inside must leave through the first face of greatest separation, exactly as a
+    // loop over the faces names it. Regular polygons about (10, -7) and centres on a grid,
+    // many on lines of symmetry, where faces tie.
+    for (int n = 3; n <= kMaxPolygonVertices; ++n) {
+        std::vector<Vec2> pts;
+        for (int i = 0; i < n; ++i) {
+            const float t = 2.0f * kPi * static_cast<float>(i) / static_cast<float>(n);
+            pts.push_back({10.0f + 4.0f * std::cos(t), -7.0f + 4.0f * std::sin(t)});
+        }
+        const std::optional<Polygon> made = make_polygon(pts);
+        ASSERT_TRUE(made.has_value());
+        const Polygon& poly = *made;
+        for (int gx = -4; gx <= 4; ++gx) {
+            for (int gy = -4; gy <= 4; ++gy) {
+                const Circle c{{10.0f + 0.5f * static_cast<float>(gx), -7.0f + 0.5f * static_cast<float>(gy)}, 0.25f};
+                float most = -INFINITY;
+                int face = 0;
+                for (int i = 0; i < n; ++i) {
+                    const float s = dot(poly.normals()[i], c.center - poly.points()[i]);
+                    if (s > most) { most = s; face = i; }
+                }
+                if (!(most <= 0.0f)) continue;  // only centres inside (or on the boundary)
+                SCOPED_TRACE(testing::Message() << n << " vertices, centre " << gx << ", " << gy);
+                const Manifold m = collide(poly, c);
+                EXPECT_TRUE(m.hit);
+                EXPECT_EQ(m.depth, 0.25f - most);
+                EXPECT_EQ(m.normal, poly.normals()[face]);
+            }
+        }
+        // Far outside every face: a miss; NaN or infinite circles too.
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{10, 20}, 1})));
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{10, -7}, NAN})));
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{NAN, -7}, 1})));
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{10, -7}, INFINITY})));
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{10, -7}, -1})));
+    }
+    EXPECT_TRUE(is_miss(collide(Polygon{}, Circle{{0, 0}, 1})));
 }
 
 TEST(AabbCircle, ClampOutside) {

@@ -88,6 +88,11 @@ inline unsigned lane_bits(Int4 m) {
 #endif
 }
 
+// The next and previous index around a polygon of n vertices (i in [0, n)), without the
+// integer division that % costs.
+inline int next_index(int i, int n) { return i + 1 == n ? 0 : i + 1; }
+inline int prev_index(int i, int n) { return i == 0 ? n - 1 : i - 1; }
+
 // A hit with the given depth and A->B normal; depth is clamped at 0 against rounding.
 inline Manifold hit_with(float depth, Vec2 normal) {
     return Manifold{true, depth > 0.0f ? depth : 0.0f, plain_zeros(normal)};

@@ -261,7 +261,7 @@ ContactSet clip_contacts(const PolygonContact& pc, Convex ref, Convex inc, Vec2 
     const int nr = ref.count, ni = inc.count;
     const Vec2 n = ref.normals[pc.face];
     const Vec2 v1 = ref.points[pc.face];
-    const Vec2 v2 = ref.points[(pc.face + 1) % nr];
+    const Vec2 v2 = ref.points[detail::next_index(pc.face, nr)];
     int k = 0;  // the incident face: its normal most opposed to n
     float most = INFINITY;
     for (int i = 0; i < ni; ++i) {
@@ -271,7 +271,7 @@ ContactSet clip_contacts(const PolygonContact& pc, Convex ref, Convex inc, Vec2 
     // The incident edge relative to v1, clipped to the reference edge's extent along its
     // direction t (the side planes s >= 0 and s <= |v2 - v1|).
     const Vec2 t{-n.y, n.x};  // the edge direction of a positively turning polygon
-    Vec2 ends[2] = {inc.points[k] + offset - v1, inc.points[(k + 1) % ni] + offset - v1};
+    Vec2 ends[2] = {inc.points[k] + offset - v1, inc.points[detail::next_index(k, ni)] + offset - v1};
     if (clip(ends, -t, 0.0f) && clip(ends, t, dot(t, v2 - v1))) {
         for (const Vec2 p : ends) {
             const float h = dot(n, p);  // height above the reference face
