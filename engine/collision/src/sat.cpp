@@ -3,6 +3,7 @@
 // with a gap, otherwise push along the axis that needs the least push.
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "internal.h"
 
@@ -165,27 +166,40 @@ using detail::Float4;
 // and outward normals): for face i, min over the others of dot(n_i, o - p_i) (09-51: the
 // lowest projection, measured from the face). Stops at the first group of faces with one
 // that separates (or gives NaN: a miss). Of tied faces the first wins.
+// The faces are read four at a time as two 16-byte loads each and split into x and y lanes by
+// shuffles; a group may run past `count` into the storage's spare slots (every caller's arrays
+// have room for a whole group: a Polygon's 16 slots, a box's 4), whose lanes are masked off.
+// The gap test and the group's largest separation come from lane masks, not a branch per lane.
 FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int count, const Vec2* others,
                                    int other_count) {
     FaceSeparation best;
     for (int first = 0; first < count; first += 4) {
-        Float4 nx, ny, px, py;
-        for (int lane = 0; lane < 4; ++lane) {
-            const int i = first + lane < count ? first + lane : first;  // spare lanes repeat a face
-            nx[lane] = normals[i].x;
-            ny[lane] = normals[i].y;
-            px[lane] = points[i].x;
-            py[lane] = points[i].y;
-        }
+        Float4 n01, n23, p01, p23;
+        std::memcpy(&n01, normals + first, sizeof n01);
+        std::memcpy(&n23, normals + first + 2, sizeof n23);
+        std::memcpy(&p01, points + first, sizeof p01);
+        std::memcpy(&p23, points + first + 2, sizeof p23);
+        const Float4 nx = __builtin_shufflevector(n01, n23, 0, 2, 4, 6);
+        const Float4 ny = __builtin_shufflevector(n01, n23, 1, 3, 5, 7);
+        const Float4 px = __builtin_shufflevector(p01, p23, 0, 2, 4, 6);
+        const Float4 py = __builtin_shufflevector(p01, p23, 1, 3, 5, 7);
         Float4 s = nx * (others[0].x - px) + ny * (others[0].y - py);
         for (int j = 1; j < other_count; ++j) {
             const Float4 d = nx * (others[j].x - px) + ny * (others[j].y - py);
             s = d < s ? d : s;
         }
-        for (int lane = 0; lane < 4 && first + lane < count; ++lane) {
-            if (!(s[lane] <= 0.0f)) return {s[lane], first + lane};  // a gap (or NaN past the limits)
-            if (s[lane] > best.separation) best = {s[lane], first + lane};
+        const int left = count - first;
+        const unsigned lanes = left >= 4 ? 15u : (1u << left) - 1u;  // the lanes holding faces
+        const unsigned gaps = ~detail::lane_bits(s <= 0.0f) & lanes;  // > 0, or NaN past the limits
+        if (gaps != 0) {
+            const int lane = std::countr_zero(gaps);
+            return {s[lane], first + lane};
         }
+        // The group's largest separation and the first lane holding it.
+        float most = s[0];
+        for (int lane = 1; lane < 4; ++lane) most = (lanes >> lane & 1u) && s[lane] > most ? s[lane] : most;
+        const int lane = std::countr_zero(detail::lane_bits(s == most) & lanes);
+        if (s[lane] > best.separation) best = {s[lane], first + lane};
     }
     return best;
 }
@@ -225,8 +239,14 @@ struct PolygonContact {
 
 PolygonContact polygon_polygon(Convex a, Convex b, Vec2 offset) {
     const int na = a.count, nb = b.count;
-    Vec2 pb[kMaxPolygonVertices];
-    for (int j = 0; j < nb; ++j) pb[j] = b.points[j] + offset;
+    // B's points shifted; with no shift, B's own (adding a zero could only turn a -0 into +0,
+    // which no separation can tell apart).
+    Vec2 shifted[kMaxPolygonVertices];
+    const Vec2* pb = b.points;
+    if (!(offset == Vec2{})) {
+        for (int j = 0; j < nb; ++j) shifted[j] = b.points[j] + offset;
+        pb = shifted;
+    }
     const FaceSeparation fa = max_face_separation(a.points, a.normals, na, pb, nb);
     if (!(fa.separation <= 0.0f)) return {};
     const FaceSeparation fb = max_face_separation(pb, b.normals, nb, a.points, na);
