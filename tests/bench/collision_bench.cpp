@@ -16,10 +16,12 @@
 //                            the 2-point contact set, clipped as Box2D clips its manifold).
 //   BM_HexMtd/mix            the same for hexagons: b2CollidePolygons vs collide(Polygon, Polygon)
 //                            and contacts(Polygon, Polygon).
-//   BM_PolyCircle/hex|obb/mix  b2CollidePolygonAndCircle vs collide(Polygon|Obb, Circle), and for
-//                            hexagons collide_sat (the lecture's second method) as well.
-//   BM_CircleCircle/mix      b2CollideCircles vs collide(Circle, Circle).
-//   BM_CastPolygon/hex/mix   b2PolygonShape::RayCast vs cast(from, to, Polygon).
+//   BM_PolyCircle/hex|obb/mix  b2CollidePolygonAndCircle vs collide(Polygon|Obb, Circle), vs
+//                            collide(Shape, Shape) (jostle_shape), and for hexagons collide_sat
+//                            (the lecture's second method) as well.
+//   BM_CircleCircle/mix      b2CollideCircles vs collide(Circle, Circle) and collide(Shape, Shape).
+//   BM_CastPolygon/hex/mix   b2PolygonShape::RayCast vs cast(from, to, Polygon) and cast(from, to,
+//                            Shape) (the dispatch the world's bullets call).
 //   BM_SweepCircle/mix       b2TimeOfImpact (linear sweeps, circle proxies) vs sweep(Circle, v,
 //                            Circle): a moving circle against a static one.
 //   BM_Mask{Overlaps,First,Count}/<side>/vs_lecture   reference:: (the lecture's loop, 09-3,
@@ -509,7 +511,7 @@ void check_round(Checker& c, std::size_t i, double sep, double L, const Manifold
     }
 }
 
-enum class RoundSide { box2d, jostle, jostle_sat };
+enum class RoundSide { box2d, jostle, jostle_sat, jostle_shape };
 
 void bm_poly_circle(benchmark::State& state, bool boxes, RoundSide side) {
     const PolyCirclePairs p = make_poly_circle_pairs(boxes, boxes ? 0x8f1bbcdcbfa53e0bull : 0x5bd1e9955bd1e995ull);
@@ -531,6 +533,12 @@ void bm_poly_circle(benchmark::State& state, bool boxes, RoundSide side) {
     } else {
         if (side == RoundSide::jostle_sat) {
             time_pool(state, jostle, kPasses, [&](std::size_t i, Manifold& m) { m = collide_sat(p.poly[i], p.circle[i]); });
+        } else if (side == RoundSide::jostle_shape) {
+            // Through the variant dispatch the world calls, shapes built outside the timed loop.
+            std::vector<std::array<Shape, 2>> shapes(kPool);
+            for (std::size_t i = 0; i < kPool; ++i)
+                shapes[i] = {boxes ? Shape{p.obb[i]} : Shape{p.poly[i]}, Shape{p.circle[i]}};
+            time_pool(state, jostle, kPasses, [&](std::size_t i, Manifold& m) { m = collide(shapes[i][0], shapes[i][1]); });
         } else if (boxes) {
             time_pool(state, jostle, kPasses, [&](std::size_t i, Manifold& m) { m = collide(p.obb[i], p.circle[i]); });
         } else {
@@ -578,7 +586,7 @@ CirclePairs make_circle_pairs(std::uint64_t seed) {
     return p;
 }
 
-void bm_circle_circle(benchmark::State& state, bool box2d_side) {
+void bm_circle_circle(benchmark::State& state, bool box2d_side, bool shape = false) {
     const CirclePairs p = make_circle_pairs(0xca5a826395121157ull);
     std::vector<Manifold> jostle(kPool);
     std::vector<char> box2d(kPool);
@@ -592,7 +600,13 @@ void bm_circle_circle(benchmark::State& state, bool box2d_side) {
         for (std::size_t i = 0; i < kPool; ++i) jostle[i] = collide(p.circle[i][0], p.circle[i][1]);
         count_hits(state, box2d, [](char h) { return h != 0; });
     } else {
-        time_pool(state, jostle, kPasses, [&](std::size_t i, Manifold& m) { m = collide(p.circle[i][0], p.circle[i][1]); });
+        if (shape) {
+            std::vector<std::array<Shape, 2>> shapes(kPool);
+            for (std::size_t i = 0; i < kPool; ++i) shapes[i] = {Shape{p.circle[i][0]}, Shape{p.circle[i][1]}};
+            time_pool(state, jostle, kPasses, [&](std::size_t i, Manifold& m) { m = collide(shapes[i][0], shapes[i][1]); });
+        } else {
+            time_pool(state, jostle, kPasses, [&](std::size_t i, Manifold& m) { m = collide(p.circle[i][0], p.circle[i][1]); });
+        }
         for (std::size_t i = 0; i < kPool; ++i) {
             b2Manifold m{};
             b2CollideCircles(&m, &p.b2[i][0], xf, &p.b2[i][1], xf);
@@ -679,7 +693,7 @@ struct Box2DRay {
     bool hit = false;
 };
 
-void bm_cast_polygon(benchmark::State& state, bool box2d_side) {
+void bm_cast_polygon(benchmark::State& state, bool box2d_side, bool shape = false) {
     const CastPairs p = make_cast_pairs(0x5851f42d4c957f2dull);
     std::vector<CastHit> jostle(kPool);
     std::vector<Box2DRay> box2d(kPool);
@@ -693,7 +707,12 @@ void bm_cast_polygon(benchmark::State& state, bool box2d_side) {
         for (std::size_t i = 0; i < kPool; ++i) jostle[i] = cast(p.ray[i][0], p.ray[i][1], p.poly[i]);
         count_hits(state, box2d, [](const Box2DRay& r) { return r.hit; });
     } else {
-        time_pool(state, jostle, kPasses, [&](std::size_t i, CastHit& h) { h = cast(p.ray[i][0], p.ray[i][1], p.poly[i]); });
+        if (shape) {
+            std::vector<Shape> shapes(p.poly.begin(), p.poly.end());
+            time_pool(state, jostle, kPasses, [&](std::size_t i, CastHit& h) { h = cast(p.ray[i][0], p.ray[i][1], shapes[i]); });
+        } else {
+            time_pool(state, jostle, kPasses, [&](std::size_t i, CastHit& h) { h = cast(p.ray[i][0], p.ray[i][1], p.poly[i]); });
+        }
         for (std::size_t i = 0; i < kPool; ++i) box2d_one(i, box2d[i]);
         count_hits(state, jostle, [](const CastHit& h) { return h.hit; });
     }
@@ -1112,13 +1131,16 @@ void register_all(Inputs& inputs) {
         const std::string base = boxes ? "BM_PolyCircle/obb/mix/" : "BM_PolyCircle/hex/mix/";
         add(base + "box2d", true, [=](benchmark::State& s) { bm_poly_circle(s, boxes, RoundSide::box2d); });
         add(base + "jostle", false, [=](benchmark::State& s) { bm_poly_circle(s, boxes, RoundSide::jostle); });
+        add(base + "jostle_shape", false, [=](benchmark::State& s) { bm_poly_circle(s, boxes, RoundSide::jostle_shape); });
         if (!boxes)
             add(base + "jostle_sat", false, [=](benchmark::State& s) { bm_poly_circle(s, boxes, RoundSide::jostle_sat); });
     }
     add("BM_CircleCircle/mix/box2d", true, [](benchmark::State& s) { bm_circle_circle(s, true); });
     add("BM_CircleCircle/mix/jostle", false, [](benchmark::State& s) { bm_circle_circle(s, false); });
+    add("BM_CircleCircle/mix/jostle_shape", false, [](benchmark::State& s) { bm_circle_circle(s, false, true); });
     add("BM_CastPolygon/hex/mix/box2d", true, [](benchmark::State& s) { bm_cast_polygon(s, true); });
     add("BM_CastPolygon/hex/mix/jostle", false, [](benchmark::State& s) { bm_cast_polygon(s, false); });
+    add("BM_CastPolygon/hex/mix/jostle_shape", false, [](benchmark::State& s) { bm_cast_polygon(s, false, true); });
     add("BM_SweepCircle/mix/box2d", true, [](benchmark::State& s) { bm_sweep_circle(s, true); });
     add("BM_SweepCircle/mix/jostle", false, [](benchmark::State& s) { bm_sweep_circle(s, false); });
     struct Query {

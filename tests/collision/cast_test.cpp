@@ -191,6 +191,32 @@ TEST(CastPolygon, Hypotenuse) {
     EXPECT_TRUE(is_cast(cast({2, 0}, {2, -5}, tri), 0.0f, {2, 0}, {0, -1}));
 }
 
+TEST(CastPolygon, StartOnTheBoundaryNonFiniteAndParallel) {
+    // Square (0,0)-(4,4) as a polygon. A start on a vertex lies on two edges: the first of them
+    // in the polygon's order gives the normal, whichever way the bullet goes.
+    const Polygon sq = test::box_polygon(0, 0, 4, 4);
+    const CastHit corner = cast({4, 4}, {9, 9}, sq);
+    EXPECT_TRUE(corner.hit);
+    EXPECT_EQ(corner.t, 0.0f);
+    int first_on = -1;
+    for (int i = 0; i < sq.count() && first_on < 0; ++i)
+        if (dot(sq.normals()[i], sq.points()[i] - Vec2{4, 4}) == 0.0f) first_on = i;
+    ASSERT_GE(first_on, 0);
+    EXPECT_EQ(corner.normal, sq.normals()[first_on]);
+    EXPECT_TRUE(is_cast(cast({4, 2}, {9, 2}, sq), 0.0f, {4, 2}, {1, 0}));
+    // The last edge is the one it starts on.
+    EXPECT_TRUE(is_cast(cast({0, 2}, {-3, 2}, sq), 0.0f, {0, 2}, {-1, 0}));
+    // Parallel to an edge: outside it a miss, along it a hit at the corner.
+    EXPECT_TRUE(is_miss(cast({-1, 5}, {9, 5}, sq)));
+    EXPECT_TRUE(is_cast(cast({-2, 4}, {2, 4}, sq), 0.5f, {0, 4}, {-1, 0}));
+    // Non-finite motion is a miss even where the arithmetic would say "inside" or "hit".
+    EXPECT_TRUE(is_miss(cast({NAN, 2}, {2, 2}, sq)));
+    EXPECT_TRUE(is_miss(cast({2, 2}, {NAN, 2}, sq)));
+    EXPECT_TRUE(is_miss(cast({-INFINITY, 2}, {2, 2}, sq)));
+    EXPECT_TRUE(is_miss(cast({-3e38f, 2}, {3e38f, 2}, sq)));  // the motion overflows
+    EXPECT_TRUE(is_miss(cast({1, 1}, {2, 2}, Polygon{})));
+}
+
 TEST(CastSegment, CrossingAndParallel) {
     // Wall (0,-1)-(0,1); (-2,0) -> (2,0): t = 0.5, point (0,0), normal facing the bullet (-1,0).
     const Segment wall{{0, -1}, {0, 1}};

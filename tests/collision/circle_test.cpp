@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "test_shapes.h"
 
@@ -148,6 +150,47 @@ TEST(PolygonCircle, ZeroRadius) {
     EXPECT_TRUE(is_miss(collide_sat(test::box_polygon(0, 0, 4, 4), Circle{{5, 2}, 0})));
 }
 
+TEST(PolygonCircle, EveryVertexCountAndTiedFaces) {
+    // The faces are measured two at a time (3..16 vertices, odd counts with a spare lane); a
+    // centre inside must leave through the first face of greatest separation, exactly as a
+    // loop over the faces names it. Regular polygons about (10, -7) and centres on a grid,
+    // many on lines of symmetry, where faces tie.
+    for (int n = 3; n <= kMaxPolygonVertices; ++n) {
+        std::vector<Vec2> pts;
+        for (int i = 0; i < n; ++i) {
+            const float t = 2.0f * kPi * static_cast<float>(i) / static_cast<float>(n);
+            pts.push_back({10.0f + 4.0f * std::cos(t), -7.0f + 4.0f * std::sin(t)});
+        }
+        const std::optional<Polygon> made = make_polygon(pts);
+        ASSERT_TRUE(made.has_value());
+        const Polygon& poly = *made;
+        for (int gx = -4; gx <= 4; ++gx) {
+            for (int gy = -4; gy <= 4; ++gy) {
+                const Circle c{{10.0f + 0.5f * static_cast<float>(gx), -7.0f + 0.5f * static_cast<float>(gy)}, 0.25f};
+                float most = -INFINITY;
+                int face = 0;
+                for (int i = 0; i < n; ++i) {
+                    const float s = dot(poly.normals()[i], c.center - poly.points()[i]);
+                    if (s > most) { most = s; face = i; }
+                }
+                if (!(most <= 0.0f)) continue;  // only centres inside (or on the boundary)
+                SCOPED_TRACE(testing::Message() << n << " vertices, centre " << gx << ", " << gy);
+                const Manifold m = collide(poly, c);
+                EXPECT_TRUE(m.hit);
+                EXPECT_EQ(m.depth, 0.25f - most);
+                EXPECT_EQ(m.normal, poly.normals()[face]);
+            }
+        }
+        // Far outside every face: a miss; NaN or infinite circles too.
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{10, 20}, 1})));
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{10, -7}, NAN})));
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{NAN, -7}, 1})));
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{10, -7}, INFINITY})));
+        EXPECT_TRUE(is_miss(collide(poly, Circle{{10, -7}, -1})));
+    }
+    EXPECT_TRUE(is_miss(collide(Polygon{}, Circle{{0, 0}, 1})));
+}
+
 TEST(AabbCircle, ClampOutside) {
     // Box [0,4]x[0,2], circle (6,1) r 3: clamp -> (4,1), distance 2, depth 1, normal (1,0).
     const Aabb box{{0, 0}, {4, 2}};
@@ -203,6 +246,36 @@ TEST(ObbCircle, QuarterTurnBox) {
     // Inside at (0,1.5) r 0.25: nearest face y = 2 at 0.5: depth 0.75, normal (0,1).
     EXPECT_TRUE(is_hit(collide(box, Circle{{0, 1.5f}, 0.25f}), 0.75f, {0, 1}, 1e-5f));
     EXPECT_TRUE(is_miss(collide(box, Circle{{0, 3.1f}, 1})));
+}
+
+TEST(ObbCircle, InvalidShapesMissEvenWhereTheArithmeticWouldHit) {
+    // The shapes are checked only for an answer that would be a hit; these would all be one
+    // without the check (a negative radius inside the box, an infinite radius far away, a
+    // negative or non-finite half extent or angle around the centre).
+    const Obb box{{0, 0}, {2, 1}, 0.3f};
+    EXPECT_TRUE(is_miss(collide(box, Circle{{0, 0}, -0.5f})));
+    EXPECT_TRUE(is_miss(collide(box, Circle{{100, 0}, INFINITY})));
+    EXPECT_TRUE(is_miss(collide(box, Circle{{0, 0}, NAN})));
+    EXPECT_TRUE(is_miss(collide(box, Circle{{NAN, 0}, 1})));
+    EXPECT_TRUE(is_miss(collide(box, Circle{{INFINITY, 0}, INFINITY})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, 0}, {-2, 1}, 0.3f}, Circle{{0, 0}, 0.5f})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, 0}, {2, INFINITY}, 0.3f}, Circle{{0, 0}, 0.5f})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, 0}, {2, 1}, INFINITY}, Circle{{0, 0}, 0.5f})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, -INFINITY}, {2, 1}, 0.0f}, Circle{{0, 0}, 0.5f})));
+    // And the same shapes, valid, hit: centre inside (depth 1 + 0.5 through the y face).
+    EXPECT_TRUE(is_hit(collide(Obb{{0, 0}, {2, 1}, 0.0f}, Circle{{0, 0}, 0.5f}), 1.5f, {0, -1}));
+}
+
+TEST(ObbCircle, CentreOnAFaceACornerAndSignedZeros) {
+    // The clamp (a min then a max) on the boundary: a centre on the face or at a corner is
+    // inside (distance 0) and leaves through the nearest face; -0 is the same point as 0.
+    const Obb box{{0, 0}, {2, 1}, 0.0f};
+    EXPECT_TRUE(is_hit(collide(box, Circle{{2, 0}, 0.5f}), 0.5f, {1, 0}));
+    EXPECT_TRUE(is_hit(collide(box, Circle{{2, 1}, 0.5f}), 0.5f, {1, 0}));
+    EXPECT_TRUE(is_hit(collide(box, Circle{{-0.0f, -1}, 0.25f}), 0.25f, {0, -1}));
+    EXPECT_TRUE(is_hit(collide(box, Circle{{-2, -0.0f}, 0}), 0.0f, {-1, 0}));
+    // Just outside the corner along the diagonal: distance sqrt2 / 100.
+    EXPECT_TRUE(is_hit(collide(box, Circle{{2.01f, 1.01f}, 0.02f}), 0.02f - 0.01f * kSqrt2, {1 / kSqrt2, 1 / kSqrt2}, 1e-4f));
 }
 
 TEST(SegmentCircle, ClosestPointInTheMiddle) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "test_shapes.h"
 
@@ -85,6 +86,51 @@ TEST(SatObb, Containment) {
     EXPECT_TRUE(is_hit(collide(Obb{{4, 0}, {0.5f, 0.5f}, 0.0f}, Obb{{0, 0}, {5, 5}, 0.0f}), 1.5f, {-1, 0}));
 }
 
+TEST(SatObb, TiedAxesGiveTheFirstAxisOfA) {
+    // B at (1,1), both half (1,1): every axis needs a push of 1 (A's x, A's y, B's x, B's y).
+    // The axes are tested side by side; the first of the tied ones, A's x, must still win.
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{1, 1}, {1, 1}, 0.0f}), 1.0f, {1, 0}));
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{-1, 1}, {1, 1}, 0.0f}), 1.0f, {-1, 0}));
+    // B turned a quarter turn (its axes are A's y and -x, up to rounding): A's x needs 0.5,
+    // every other axis 1.
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{1.5f, 1}, {1, 1}, kPi / 2}), 0.5f, {1, 0}, 1e-6f));
+    // A = 6x2 box, B = 2x6 box 1.5 below: x axes need 4, A's y and B's y both 2.5.
+    const Manifold m = collide(Obb{{0, 0}, {3, 1}, 0.0f}, Obb{{0, 1.5f}, {1, 3}, 0.0f});
+    EXPECT_TRUE(is_hit(m, 2.5f, {0, 1}));
+}
+
+TEST(SatObb, NonFiniteOrMalformedBoxesMissWhateverTheField) {
+    // Each field of either box in turn: NaN, +inf and -inf are a miss, and so is a negative
+    // half extent (the boxes' validity is tested without a branch per field).
+    const float bad[] = {NAN, INFINITY, -INFINITY};
+    for (const float v : bad) {
+        for (int field = 0; field < 5; ++field) {
+            Obb b{{0.5f, 0.5f}, {1, 1}, 0.25f};
+            if (field == 0) b.center.x = v;
+            if (field == 1) b.center.y = v;
+            if (field == 2) b.half.x = v;
+            if (field == 3) b.half.y = v;
+            if (field == 4) b.set_angle(v);
+            SCOPED_TRACE(field);
+            EXPECT_TRUE(is_miss(collide(kUnitBox, b)));
+            EXPECT_TRUE(is_miss(collide(b, kUnitBox)));
+            EXPECT_TRUE(is_miss(collide(Aabb{{-1, -1}, {1, 1}}, b)));
+            EXPECT_EQ(contacts(b, kUnitBox).count, 0);
+            EXPECT_TRUE(is_miss(contacts(kUnitBox, b).manifold));
+            EXPECT_TRUE(is_miss(collide(b, Circle{{0, 0}, 1})));
+        }
+    }
+    EXPECT_TRUE(is_miss(collide(kUnitBox, Obb{{0, 0}, {-1, 1}, 0.0f})));
+    EXPECT_TRUE(is_miss(collide(Obb{{0, 0}, {1, -0.5f}, 0.0f}, kUnitBox)));
+    // A zero-size box is a point: a hit inside, a miss outside.
+    EXPECT_TRUE(is_hit(collide(kUnitBox, Obb{{0.5f, 0}, {0, 0}, 0.0f}), 0.5f, {1, 0}));
+    EXPECT_TRUE(is_miss(collide(kUnitBox, Obb{{1.5f, 0}, {0, 0}, 0.3f})));
+    // Boxes at the limits of float, whose pushes overflow: a defined result, never NaN.
+    const Manifold huge = collide(Obb{{0, 0}, {3e38f, 3e38f}, 0.0f}, Obb{{0, 0}, {3e38f, 3e38f}, 0.0f});
+    EXPECT_FALSE(std::isnan(huge.depth));
+    EXPECT_FALSE(std::isnan(huge.normal.x) || std::isnan(huge.normal.y));
+}
+
 TEST(SatAabbObb, MatchesTheObbOfTheSameBox) {
     const Aabb a{{0, 0}, {2, 2}};
     // The diamond cases from EarlyExitMustNotStopAtOverlappingAxes.
@@ -151,6 +197,68 @@ TEST(SatPolygon, SeparatedOnlyOnTheDiagonalAxis) {
     // x: min(4-1.5, 3.5-0) = 2.5, y the same.
     const Manifold m = collide(a, test::moved(b, {-1.5f, -1.5f}));
     EXPECT_TRUE(is_hit(m, 1.0f / kSqrt2, {1.0f / kSqrt2, 1.0f / kSqrt2}, 1e-5f));
+}
+
+// The polygon SAT as a plain loop over faces and vertices (the form the lanes must match bit
+// for bit): the largest over A's faces of min over B's vertices of dot(n, b - p), the same with
+// B's faces, ties to the first face and to A.
+Manifold face_loop_sat(const Polygon& a, const Polygon& b) {
+    struct Best {
+        float sep = -INFINITY;
+        int face = 0;
+    };
+    const auto side = [](const Polygon& f, const Polygon& o, Best& best) {
+        for (int i = 0; i < f.count(); ++i) {
+            float s = INFINITY;
+            for (int j = 0; j < o.count(); ++j) {
+                const float d = f.normals()[i].x * (o.points()[j].x - f.points()[i].x) +
+                                f.normals()[i].y * (o.points()[j].y - f.points()[i].y);
+                s = d < s ? d : s;
+            }
+            if (!(s <= 0.0f)) return false;
+            if (s > best.sep) best = {s, i};
+        }
+        return true;
+    };
+    Best fa, fb;
+    if (!side(a, b, fa) || !side(b, a, fb)) return {};
+    const bool a_face = fa.sep >= fb.sep;
+    const float depth = -(a_face ? fa.sep : fb.sep);
+    const Vec2 n = a_face ? a.normals()[fa.face] : -b.normals()[fb.face];
+    return Manifold{true, depth > 0.0f ? depth : 0.0f, {n.x + 0.0f, n.y + 0.0f}};
+}
+
+TEST(SatPolygon, EveryVertexCountMatchesTheFaceLoop) {
+    // Faces are tested four at a time; counts that are not a multiple of 4 leave spare lanes,
+    // which must never name a face or a gap. Regular polygons of 3..16 vertices, turned, at
+    // offsets that overlap, touch and miss.
+    const auto regular = [](int n, Vec2 c, float r, float turn) {
+        std::vector<Vec2> pts;
+        for (int i = 0; i < n; ++i) {
+            const float t = turn + 2.0f * kPi * static_cast<float>(i) / static_cast<float>(n);
+            pts.push_back({c.x + r * std::cos(t), c.y + r * std::sin(t)});
+        }
+        return *make_polygon(pts);
+    };
+    int hits = 0, misses = 0;
+    for (int n = 3; n <= kMaxPolygonVertices; ++n) {
+        const Polygon a = regular(n, {1, 2}, 3.0f, 0.1f * static_cast<float>(n));
+        for (int m = 3; m <= kMaxPolygonVertices; ++m) {
+            for (const Vec2 at : {Vec2{1, 2}, Vec2{3, 2.5f}, Vec2{6.5f, 2}, Vec2{-4, -1}, Vec2{1, 9}}) {
+                const Polygon b = regular(m, at, 2.0f, 0.3f * static_cast<float>(m));
+                SCOPED_TRACE(testing::Message() << n << " and " << m << " vertices, B at " << at.x << ", " << at.y);
+                const Manifold want = face_loop_sat(a, b);
+                const Manifold got = collide(a, b);
+                EXPECT_EQ(got.hit, want.hit);
+                EXPECT_EQ(got.depth, want.depth);
+                EXPECT_EQ(got.normal, want.normal);
+                EXPECT_EQ(contacts(a, b).manifold.normal, want.normal);
+                (want.hit ? hits : misses) += 1;
+            }
+        }
+    }
+    EXPECT_GT(hits, 200);
+    EXPECT_GT(misses, 200);
 }
 
 TEST(SatPolygonSegment, SegmentCrossingASquare) {

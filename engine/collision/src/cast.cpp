@@ -146,19 +146,21 @@ CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
     // leaves it at the earliest leaving edge. One pass also finds whether `from` is inside
     // (on the inner side of every edge): then no edge can end the pass early, since entering
     // edges give t <= 0 and leaving edges t >= 0.
-    if (!valid_motion(from, to - from) || !valid(poly)) return {};
+    // The motion is checked at the end, for a hit only: an invalid input is a miss and the
+    // arithmetic on any input is defined. The farthest edge is kept as a value (MAXSS, no
+    // branch on the data); which edge it is matters only for a start on the boundary.
+    if (!valid(poly)) return {};
     const Vec2 d = to - from;
     const Vec2* points = poly.points().data();
     const Vec2* normals = poly.normals().data();
     float max_side = -INFINITY;  // how far from is outside its farthest edge
-    int max_edge = 0;
     float t_enter = 0.0f;
     float t_exit = 1.0f;
     Vec2 normal{};
     for (int i = 0; i < poly.count(); ++i) {
         const Vec2 n = normals[i];
         const float num = dot(n, points[i] - from);  // < 0: from is outside this edge
-        if (-num > max_side) { max_side = -num; max_edge = i; }
+        max_side = -num > max_side ? -num : max_side;
         const float den = dot(n, d);
         if (den == 0.0f) {
             if (num < 0.0f) return {};  // parallel to the edge, outside it
@@ -173,7 +175,14 @@ CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
         }
         if (!(t_enter <= t_exit)) return {};
     }
-    if (max_side <= 0.0f) return starts_inside(from, max_side == 0.0f ? normals[max_edge] : Vec2{});
+    if (!valid_motion(from, d)) return {};
+    if (max_side <= 0.0f) {
+        if (max_side < 0.0f) return starts_inside(from);
+        // On the boundary: the first edge it lies on gives the normal.
+        int on = 0;
+        while (on + 1 < poly.count() && !(-dot(normals[on], points[on] - from) == max_side)) ++on;
+        return starts_inside(from, normals[on]);
+    }
     return hit_at(from, d, t_enter, normal);
 }
 

@@ -3,7 +3,9 @@
 // the "push in" clamp, segment-circle. The slides test "< r" (09-71, 09-87); here touching
 // (== r) is a hit with depth 0, the convention for every pair.
 #include <cfloat>
+#include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "internal.h"
 
@@ -27,25 +29,56 @@ Manifold collide(const Circle& a, const Circle& b) {
     return hit_with(r - len, len > 0.0f ? Vec2{d.x / len, d.y / len} : Vec2{1.0f, 0.0f});
 }
 
-Manifold collide(const Polygon& a, const Circle& b) {
-    // 09-90: the closest point p of the polygon's boundary to the centre c; the MTD has
-    // direction p - c and length r - |p - c|. The slide assumes c is outside; when it is
-    // inside, the shortest way out is through the nearest edge, by r plus c's depth.
-    if (!valid(a) || !valid(b)) return {};
-    const Vec2 c = b.center;
-    float max_sep = -INFINITY;
-    int max_edge = 0;
-    for (int i = 0; i < a.count(); ++i) {
-        const float s = dot(a.normals()[i], c - a.points()[i]);
-        if (s > max_sep) { max_sep = s; max_edge = i; }
+namespace {
+// dot(n_i, c - p_i) for faces 2k and 2k + 1 in lanes 0 and 2 (a Polygon stores its points and
+// normals x, y, x, y, so lane 0 + lane 1 and lane 2 + lane 3 are the two faces' dot products,
+// summed in the scalar order, x term + y term: each value is the scalar loop's bit for bit).
+// An odd count's missing face (slot n, which every Polygon has) is -inf.
+inline detail::Float4 face_pair_separation(const Polygon& poly, detail::Float4 cc, int k) {
+    detail::Float4 p, u;
+    std::memcpy(&p, poly.points().data() + 2 * k, sizeof p);
+    std::memcpy(&u, poly.normals().data() + 2 * k, sizeof u);
+    const detail::Float4 m = u * (cc - p);
+    detail::Float4 s = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
+    if (2 * k + 1 == poly.count()) s[2] = -INFINITY;
+    return s;
+}
+
+// How far the point is outside the polygon's farthest face (09-90's first step): the max over
+// the faces of dot(n_i, c - p_i), lane by lane (MAXPS: a NaN never wins, as in a loop's
+// `s > max`); -inf when every face gives NaN (past the limits).
+inline float max_face_separation(const Polygon& poly, detail::Float4 cc) {
+    detail::Float4 top = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < (poly.count() + 1) / 2; ++k) {
+        const detail::Float4 s = face_pair_separation(poly, cc, k);
+        top = s > top ? s : top;
     }
-    if (max_sep > b.radius) return {};  // an edge normal separates: early out
+    return top[2] > top[0] ? top[2] : top[0];
+}
+
+// The first face whose separation is `most` (found from bit masks, with no branch on the
+// data): the face a loop keeping the first strict maximum would name. Only the sign of a zero
+// separation may differ from that loop's, which no use of it can tell.
+inline int first_face_at(const Polygon& poly, detail::Float4 cc, float most) {
+    unsigned faces = 0;
+    for (int k = 0; k < (poly.count() + 1) / 2; ++k) {
+        const unsigned bits = detail::lane_bits(face_pair_separation(poly, cc, k) == most);
+        faces |= ((bits & 1u) | ((bits >> 1) & 2u)) << (2 * k);
+    }
+    return faces == 0 ? 0 : std::countr_zero(faces);  // none: every face NaN
+}
+
+// collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
+// Kept out of line so that the common early out is a short function with nothing to save.
+[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, detail::Float4 cc, float max_sep) {
+    const Vec2 c = b.center;
+    const int max_edge = first_face_at(a, cc, max_sep);
     if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);  // centre inside
     // Beside the edge of greatest separation (c projects inside it, tested from each end so
     // that a long edge rounds neither), that edge is the nearest feature: its own normal and
     // the separation are exact where normalising c - p would round.
     const Vec2 p0 = a.points()[max_edge];
-    const Vec2 p1 = a.points()[(max_edge + 1) % a.count()];
+    const Vec2 p1 = a.points()[detail::next_index(max_edge, a.count())];
     const Vec2 e = p1 - p0;
     if (dot(c - p0, e) > 0.0f && dot(c - p1, e) < 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
     // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
@@ -59,12 +92,28 @@ Manifold collide(const Polygon& a, const Circle& b) {
     }
     if (!(dist2 <= b.radius * b.radius)) return {};
     // A direction outside the vertex's cone of normals means the centre is on the vertex up
-    // to rounding: the nearer of its two faces' normals.
-    const Vec2 n_prev = a.normals()[(vertex + a.count() - 1) % a.count()];
+    // to rounding: the nearer of its two faces' normals. (normalize_or(d, ...) with the one
+    // square root that the depth needs too.)
+    const Vec2 n_prev = a.normals()[detail::prev_index(vertex, a.count())];
     const Vec2 n_next = a.normals()[vertex];
-    Vec2 n = normalize_or(d, a.normals()[max_edge]);
+    const float len = std::sqrt(dist2);
+    Vec2 n = len > 0.0f && len < INFINITY ? Vec2{d.x / len, d.y / len} : a.normals()[max_edge];
     if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) n = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
-    return hit_with(b.radius - std::sqrt(dist2), n);
+    return hit_with(b.radius - len, n);
+}
+}  // namespace
+
+Manifold collide(const Polygon& a, const Circle& b) {
+    // 09-90: the closest point p of the polygon's boundary to the centre c; the MTD has
+    // direction p - c and length r - |p - c|. The slide assumes c is outside; when it is
+    // inside, the shortest way out is through the nearest edge, by r plus c's depth.
+    // The circle is checked only for an answer that would be a hit (an invalid circle is a
+    // miss, and the arithmetic on any input is defined); the empty polygon has no faces.
+    if (!valid(a)) return {};
+    const detail::Float4 cc = {b.center.x, b.center.y, b.center.x, b.center.y};
+    const float max_sep = max_face_separation(a, cc);
+    if (max_sep > b.radius || !valid(b)) return {};  // an edge normal separates: early out
+    return polygon_circle_near(a, b, cc, max_sep);
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {
@@ -100,10 +149,19 @@ Manifold collide_sat(const Polygon& a, const Circle& b) {
     return hit_with(best, best_normal);
 }
 
-Manifold detail::box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
+namespace {
+// The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in"). Here, not
+// behind a call, so that the box and circle pairs compile into one function each.
+inline Manifold box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
     // 09-102: "push in" the centre to find the closest point q of the box. A centre outside
     // leaves along c - q; a centre inside (or on the boundary, where c - q is zero or too
     // small to have a direction) is pushed out through the nearest face.
+    // The clamp as a min then a max (MINSS/MAXSS, no branch on where the centre lies). With
+    // lo <= hi it gives detail::clamp's value bit for bit, also for -0 and NaN.
+    const auto clamp = [](float v, float l, float h) {
+        const float t = h < v ? h : v;
+        return l > t ? l : t;
+    };
     const Vec2 q{clamp(c.x, lo.x, hi.x), clamp(c.y, lo.y, hi.y)};
     const Vec2 d = c - q;
     const float dist2 = dot(d, d);
@@ -119,19 +177,23 @@ Manifold detail::box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
     if (hi.y - c.y < depth) { depth = hi.y - c.y; normal = {0.0f, 1.0f}; }
     return hit_with(depth + r, normal);
 }
+}  // namespace
 
 Manifold collide(const Aabb& a, const Circle& b) {
     if (!valid(a) || !valid(b)) return {};
-    return detail::box_circle(a.min, a.max, b.center, b.radius);
+    return box_circle(a.min, a.max, b.center, b.radius);
 }
 
 Manifold collide(const Obb& a, const Circle& b) {
-    // The clamp in the box's own frame, then the normal turned back.
-    if (!valid(a) || !valid(b)) return {};
+    // The clamp in the box's own frame, then the normal turned back. The shapes are checked
+    // only when the answer would be a hit: an invalid shape is a miss, so a miss needs no
+    // check (the arithmetic on any input is defined, only the answer would be wrong).
     const Rot q = a.rotation();
     const Vec2 local = inv_rotate(q, b.center - a.center);
-    Manifold m = detail::box_circle(-a.half, a.half, local, b.radius);
-    if (m.hit) m.normal = detail::plain_zeros(rotate(q, m.normal));
+    Manifold m = box_circle(-a.half, a.half, local, b.radius);
+    if (!m.hit) return m;
+    if (!(valid(a) && valid(b))) return {};
+    m.normal = detail::plain_zeros(rotate(q, m.normal));
     return m;
 }
 

@@ -1,6 +1,9 @@
 // One entry point for any two shapes: collide(Shape, Shape) and overlaps(Shape, Shape) pick
 // the typed function from the header's pair table; the reverse order swaps the arguments
 // and flips the normal.
+#include <type_traits>
+#include <variant>
+
 #include "internal.h"
 
 namespace jostle {
@@ -9,9 +12,18 @@ using detail::flipped;
 
 namespace {
 
+// The variant's index is the kind (ShapeKind lists the alternatives in order); read here
+// rather than through kind_of, which lives in another file and would be a call per shape.
+ShapeKind kind(const Shape& s) { return static_cast<ShapeKind>(s.index()); }
+template <ShapeKind K, class T>
+constexpr bool kind_is = std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(K), Shape>, T>;
+static_assert(kind_is<ShapeKind::aabb, Aabb> && kind_is<ShapeKind::obb, Obb> && kind_is<ShapeKind::polygon, Polygon> &&
+              kind_is<ShapeKind::circle, Circle> && kind_is<ShapeKind::segment, Segment> &&
+              kind_is<ShapeKind::mask, PlacedMask>);
+
 // Every unordered pair once, in the pair table's row order (A's kind <= B's kind).
 Manifold ordered(const Shape& a, const Shape& b) {
-    const ShapeKind ka = kind_of(a), kb = kind_of(b);
+    const ShapeKind ka = kind(a), kb = kind(b);
     using K = ShapeKind;
     switch (ka) {
         case K::aabb: {
@@ -78,7 +90,7 @@ Manifold ordered(const Shape& a, const Shape& b) {
 }  // namespace
 
 Manifold collide(const Shape& a, const Shape& b) {
-    if (kind_of(a) <= kind_of(b)) return ordered(a, b);
+    if (kind(a) <= kind(b)) return ordered(a, b);
     return flipped(ordered(b, a));
 }
 

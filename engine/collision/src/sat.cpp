@@ -1,7 +1,9 @@
 // Oriented boxes and convex polygons by the separating axis theorem, slides 09-35 to 09-69:
 // project both shapes on each candidate axis (the edge normals), stop at the first axis
 // with a gap, otherwise push along the axis that needs the least push.
+#include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "internal.h"
 
@@ -75,32 +77,59 @@ detail::ConvexView view_of(const detail::SegmentAxes& s, Vec2 offset = {}) {
 // 09-58 with the boxes' own axes: 2 + 2 candidate axes. A box's projection on an axis u is
 // its centre's projection plus-minus the projected radius hx |ux.u| + hy |uy.u|, so no
 // corner is projected one by one. d is B's centre minus A's centre.
+//
+// The four axes are computed side by side (GCC's portable vector extension, one lane per
+// axis, each lane exactly the scalar arithmetic), and one test of the four lanes replaces the
+// slides' early exit per axis (09-50): a gap on any axis is a miss. Only a hit picks its axis,
+// in axis order as the loop did (a later axis wins only when strictly smaller), so the results
+// are the same bit for bit.
 struct BoxBox {
     Manifold manifold;
     int axis = 0;          // the MTD's axis: 0, 1 A's x and y, 2, 3 B's x and y
     bool positive = true;  // the normal is +axis (or -axis)
 };
 
-BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
-    const Vec2 axes[4] = {{qa.c, qa.s}, {-qa.s, qa.c}, {qb.c, qb.s}, {-qb.s, qb.c}};
-    // |cos| of the angles between A's axes (rows) and B's (columns): a box's projected radius
-    // on the other's axis. On its own axes a box's radius is its half extent.
-    const float c00 = std::fabs(dot(axes[0], axes[2])), c01 = std::fabs(dot(axes[0], axes[3]));
-    const float c10 = std::fabs(dot(axes[1], axes[2])), c11 = std::fabs(dot(axes[1], axes[3]));
-    const float radius_a[4] = {half_a.x, half_a.y, half_a.x * c00 + half_a.y * c10, half_a.x * c01 + half_a.y * c11};
-    const float radius_b[4] = {half_b.x * c00 + half_b.y * c01, half_b.x * c10 + half_b.y * c11, half_b.x, half_b.y};
+inline BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
+    using detail::Float4;
+    using detail::Int4;
+    // The axes: A's x and y, B's x and y.
+    const Float4 q = {qa.c, qa.s, qb.c, qb.s};
+    const Float4 flip = {0.0f, -0.0f, 0.0f, -0.0f};  // XOR with -0 negates
+    const Float4 ux = detail::bit_xor(__builtin_shufflevector(q, q, 0, 1, 2, 3), flip);  // c, -s, c, -s
+    const Float4 uy = __builtin_shufflevector(q, q, 1, 0, 3, 2);                          // s, c, s, c
+    // |cos| of the angles between A's axes (rows) and B's (columns), dot(A_i, B_j) lane by
+    // lane {00, 01, 10, 11}: a box's projected radius on the other's axis. On its own axes a
+    // box's radius is its half extent.
+    const Float4 cosines = detail::abs(__builtin_shufflevector(ux, ux, 0, 0, 1, 1) * __builtin_shufflevector(ux, ux, 2, 3, 2, 3) +
+                                       __builtin_shufflevector(uy, uy, 0, 0, 1, 1) * __builtin_shufflevector(uy, uy, 2, 3, 2, 3));
+    const Float4 ha = {half_a.x, half_a.x, half_a.y, half_a.y}, hb = {half_b.x, half_b.y, half_b.x, half_b.y};
+    const Float4 ta = ha * cosines;  // hax c00, hax c01, hay c10, hay c11
+    const Float4 tb = hb * cosines;  // hbx c00, hby c01, hbx c10, hby c11
+    // A: hax, hay on its own axes, hax c00 + hay c10 and hax c01 + hay c11 on B's; B: hbx c00 +
+    // hby c01 and hbx c10 + hby c11 on A's axes, hbx, hby on its own.
+    const Float4 radius_a = __builtin_shufflevector(ha, ta + __builtin_shufflevector(ta, ta, 2, 3, 2, 3), 0, 2, 4, 5);
+    const Float4 radius_b = __builtin_shufflevector(
+        __builtin_shufflevector(tb, tb, 0, 2, 0, 2) + __builtin_shufflevector(tb, tb, 1, 3, 1, 3), hb, 0, 1, 4, 5);
+    const Float4 r = radius_a + radius_b;
+    const Float4 s = ux * d.x + uy * d.y;  // dot(d, u) per axis
+    const Float4 push_pos = r - s;         // moving A by -push_pos u separates (normal u)
+    const Float4 push_neg = r + s;         // moving A by +push_neg u separates (normal -u)
+    // detail::consider_axis lane by lane: a gap (or NaN) on any axis is a miss.
+    if (detail::lane_bits((push_pos >= 0.0f) & (push_neg >= 0.0f)) != 15) return {};
+    const Int4 pos = push_pos <= push_neg;
+    const Float4 push = pos ? push_pos : push_neg;  // 09-60: the smaller push of each axis
     float best = INFINITY;
-    Vec2 best_normal{1.0f, 0.0f};
+    for (int i = 0; i < 4; ++i) best = push[i] < best ? push[i] : best;
     BoxBox out;
-    for (int i = 0; i < 4; ++i) {
-        const Vec2 u = axes[i];
-        const float ra = radius_a[i], rb = radius_b[i];
-        const float s = dot(d, u);
-        const float before = best;
-        if (!detail::consider_axis(u, ra + rb - s, ra + rb + s, best, best_normal)) return {};
-        if (best != before) { out.axis = i; out.positive = best_normal == u; }
+    if (best == INFINITY) {  // every push overflowed: no axis taken, normal {1, 0}
+        out.manifold = detail::hit_with(best, {1.0f, 0.0f});
+        return out;
     }
-    out.manifold = detail::hit_with(best, best_normal);
+    // The first axis whose push is the least (a later one wins only when strictly smaller).
+    out.axis = std::countr_zero(detail::lane_bits(push == best));
+    out.positive = pos[out.axis] != 0;
+    const Vec2 u{ux[out.axis], uy[out.axis]};
+    out.manifold = detail::hit_with(best, out.positive ? u : -u);
     return out;
 }
 }  // namespace
@@ -129,36 +158,48 @@ struct FaceSeparation {
     int face = 0;
 };
 
-// Four faces side by side: GCC's portable vector extension, one instruction for four lanes
-// where the target has SIMD and plain code where not. Each lane does exactly the scalar
-// arithmetic of one face, so the results are the same bit for bit.
-using Float4 = float __attribute__((vector_size(16)));
+// Four faces side by side (detail::Float4): each lane does exactly the scalar arithmetic of
+// one face, so the results are the same bit for bit.
+using detail::Float4;
 
 // The largest separation of the point set `others` from the faces of a polygon (its points
 // and outward normals): for face i, min over the others of dot(n_i, o - p_i) (09-51: the
 // lowest projection, measured from the face). Stops at the first group of faces with one
 // that separates (or gives NaN: a miss). Of tied faces the first wins.
+// The faces are read four at a time as two 16-byte loads each and split into x and y lanes by
+// shuffles; a group may run past `count` into the storage's spare slots (every caller's arrays
+// have room for a whole group: a Polygon's 16 slots, a box's 4), whose lanes are masked off.
+// The gap test and the group's largest separation come from lane masks, not a branch per lane.
 FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int count, const Vec2* others,
                                    int other_count) {
     FaceSeparation best;
     for (int first = 0; first < count; first += 4) {
-        Float4 nx, ny, px, py;
-        for (int lane = 0; lane < 4; ++lane) {
-            const int i = first + lane < count ? first + lane : first;  // spare lanes repeat a face
-            nx[lane] = normals[i].x;
-            ny[lane] = normals[i].y;
-            px[lane] = points[i].x;
-            py[lane] = points[i].y;
-        }
+        Float4 n01, n23, p01, p23;
+        std::memcpy(&n01, normals + first, sizeof n01);
+        std::memcpy(&n23, normals + first + 2, sizeof n23);
+        std::memcpy(&p01, points + first, sizeof p01);
+        std::memcpy(&p23, points + first + 2, sizeof p23);
+        const Float4 nx = __builtin_shufflevector(n01, n23, 0, 2, 4, 6);
+        const Float4 ny = __builtin_shufflevector(n01, n23, 1, 3, 5, 7);
+        const Float4 px = __builtin_shufflevector(p01, p23, 0, 2, 4, 6);
+        const Float4 py = __builtin_shufflevector(p01, p23, 1, 3, 5, 7);
         Float4 s = nx * (others[0].x - px) + ny * (others[0].y - py);
         for (int j = 1; j < other_count; ++j) {
             const Float4 d = nx * (others[j].x - px) + ny * (others[j].y - py);
             s = d < s ? d : s;
         }
-        for (int lane = 0; lane < 4 && first + lane < count; ++lane) {
-            if (!(s[lane] <= 0.0f)) return {s[lane], first + lane};  // a gap (or NaN past the limits)
-            if (s[lane] > best.separation) best = {s[lane], first + lane};
+        const int left = count - first;
+        const unsigned lanes = left >= 4 ? 15u : (1u << left) - 1u;  // the lanes holding faces
+        const unsigned gaps = ~detail::lane_bits(s <= 0.0f) & lanes;  // > 0, or NaN past the limits
+        if (gaps != 0) {
+            const int lane = std::countr_zero(gaps);
+            return {s[lane], first + lane};
         }
+        // The group's largest separation and the first lane holding it.
+        float most = s[0];
+        for (int lane = 1; lane < 4; ++lane) most = (lanes >> lane & 1u) && s[lane] > most ? s[lane] : most;
+        const int lane = std::countr_zero(detail::lane_bits(s == most) & lanes);
+        if (s[lane] > best.separation) best = {s[lane], first + lane};
     }
     return best;
 }
@@ -198,8 +239,14 @@ struct PolygonContact {
 
 PolygonContact polygon_polygon(Convex a, Convex b, Vec2 offset) {
     const int na = a.count, nb = b.count;
-    Vec2 pb[kMaxPolygonVertices];
-    for (int j = 0; j < nb; ++j) pb[j] = b.points[j] + offset;
+    // B's points shifted; with no shift, B's own (adding a zero could only turn a -0 into +0,
+    // which no separation can tell apart).
+    Vec2 shifted[kMaxPolygonVertices];
+    const Vec2* pb = b.points;
+    if (!(offset == Vec2{})) {
+        for (int j = 0; j < nb; ++j) shifted[j] = b.points[j] + offset;
+        pb = shifted;
+    }
     const FaceSeparation fa = max_face_separation(a.points, a.normals, na, pb, nb);
     if (!(fa.separation <= 0.0f)) return {};
     const FaceSeparation fb = max_face_separation(pb, b.normals, nb, a.points, na);
@@ -234,7 +281,7 @@ ContactSet clip_contacts(const PolygonContact& pc, Convex ref, Convex inc, Vec2 
     const int nr = ref.count, ni = inc.count;
     const Vec2 n = ref.normals[pc.face];
     const Vec2 v1 = ref.points[pc.face];
-    const Vec2 v2 = ref.points[(pc.face + 1) % nr];
+    const Vec2 v2 = ref.points[detail::next_index(pc.face, nr)];
     int k = 0;  // the incident face: its normal most opposed to n
     float most = INFINITY;
     for (int i = 0; i < ni; ++i) {
@@ -244,7 +291,7 @@ ContactSet clip_contacts(const PolygonContact& pc, Convex ref, Convex inc, Vec2 
     // The incident edge relative to v1, clipped to the reference edge's extent along its
     // direction t (the side planes s >= 0 and s <= |v2 - v1|).
     const Vec2 t{-n.y, n.x};  // the edge direction of a positively turning polygon
-    Vec2 ends[2] = {inc.points[k] + offset - v1, inc.points[(k + 1) % ni] + offset - v1};
+    Vec2 ends[2] = {inc.points[k] + offset - v1, inc.points[detail::next_index(k, ni)] + offset - v1};
     if (clip(ends, -t, 0.0f) && clip(ends, t, dot(t, v2 - v1))) {
         for (const Vec2 p : ends) {
             const float h = dot(n, p);  // height above the reference face
@@ -289,10 +336,9 @@ ContactSet contacts(const Obb& a, const Obb& b) {
     // The MTD of collide(a, b), then its face on the box that owns the axis: CentredBox's
     // faces 0..3 have normals -y, +x, +y, -x of the box. Solved around A's centre, where both
     // boxes' corners are precise; the points are moved back.
-    if (!valid(a) || !valid(b)) return {};
     const Vec2 d = b.center - a.center;
     const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), d);
-    if (!bb.manifold.hit) return {};
+    if (!bb.manifold.hit || !(valid(a) && valid(b))) return {};
     // A's face has the normal's direction; B's the opposite one.
     const bool a_face = bb.axis < 2;
     const bool outward_positive = a_face ? bb.positive : !bb.positive;
@@ -304,14 +350,18 @@ ContactSet contacts(const Obb& a, const Obb& b) {
 }
 
 Manifold collide(const Obb& a, const Obb& b) {
-    if (!valid(a) || !valid(b)) return {};
-    return box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center).manifold;
+    // The boxes are checked only for an answer that would be a hit: an invalid box is a miss,
+    // so a miss needs no check (the arithmetic on any input is defined, only the answer would
+    // be wrong).
+    const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center);
+    if (!bb.manifold.hit || !(valid(a) && valid(b))) return {};
+    return bb.manifold;
 }
 
 Manifold collide(const Aabb& a, const Obb& b) {
     // The AABB as a box at angle 0. Its centre (min + max) / 2 may not be a float far from
     // the origin, so the offset is formed from differences instead.
-    if (!valid(a) || !valid(b)) return {};
+    if (!(valid(a) && valid(b))) return {};
     const Vec2 half = (a.max - a.min) * 0.5f;
     return box_box(half, Rot{}, b.half, b.rotation(), (b.center - a.min) - half).manifold;
 }
