@@ -45,7 +45,10 @@ Mask::Mask(int width, int height) {
     width_ = width;
     height_ = height;
     words_per_row_ = (width + 63) / 64;
-    bits_.assign(static_cast<std::size_t>(words_per_row_) * static_cast<std::size_t>(height), 0);
+    // One clear word past the last row: the mask queries read the word after a row's last one
+    // (two adjacent words joined by a shift) and mask off its bits, so a row's last word has a
+    // readable neighbour, the next row's first word or this one (8 bytes a mask).
+    bits_.assign(static_cast<std::size_t>(words_per_row_) * static_cast<std::size_t>(height) + 1, 0);
 }
 
 // An empty list gives a 0 x 0 mask and empty rows a 0-wide mask: both are valid and hit
@@ -179,31 +182,27 @@ struct Placed {
 Placed placed(const PlacedMask& p) { return {p.mask, p.x, p.y}; }
 
 // 09-30: AND the two masks over the intersection of their rectangles only, 64 pixels per
-// AND. Everything that does not change from row to row is worked out once per query here
-// (for small masks that per-query work is most of the cost): one mask, "A", is read
-// word-aligned over the words that hold shared columns; the 64 pixels of the other, "B",
-// under A's word i of a row are two adjacent B words joined by a shift that is the same for
-// every word of every row. Pixels outside B read as clear: past B's width its bits are clear,
-// and before B's column 0 (or past its last word) the word is read at a clamped index and
-// masked to 0, so the loops have no bounds tests and never read outside a row.
-// "A" and "B" here are the aligned and the shifted mask: share_words picks which query
-// argument plays which part. No default values: share_words sets every field (zeroing the
-// struct first cost as much as a row's work).
+// AND. The shared rectangle starts at column x0 = max(a.x, b.x), which is column 0 of one
+// of the two masks: that one, "P", is read word-aligned (shared chunk i of a row is its word
+// i); the 64 pixels of the other, "O", under it are two adjacent O words joined by a shift
+// that is the same for every chunk of every row. The last chunk of a row is ANDed with `tail`,
+// which clears the columns past the shared rectangle: there P's bits are clear (past its
+// width) and O's are its own clear bits or the next row's (or the padding word after the last
+// row, see Mask::Mask), so nothing outside a mask's storage is read and every read bit that
+// counts lies inside both masks. Which mask plays P is chosen by selects, not a branch (it is
+// random from pair to pair), and the setup is a few dozen instructions: for small masks the
+// setup is most of a query's cost.
 struct SharedWords {
-    const u64* a;         // A's first word holding a shared column, in the first shared row
-    const u64* b;         // word 0 of B's first shared row
-    int a_stride;         // A's words per row
-    int b_stride;         // B's words per row
-    int rows;             // shared rows, >= 1
-    int words;            // A words per shared row, >= 1
-    int q;                // the B word holding the pixel under bit 0 of A's first word; -1 if left of B
-    int shift;            // that pixel's bit in B word q
-    int first_lo;         // the low B word of A's word 0: word q clamped into the row, and
-    u64 first_lo_keep;    //   ~0, or 0 when q = -1 lies outside it
-    int last_hi;          // the high B word of A's last word: word q + words clamped, and
-    u64 last_hi_keep;     //   ~0, or 0 when it lies past the row
-    i64 x;                // world pixel of bit 0 of A's first word
-    i64 y;                // world row of the first shared row
+    const u64* p;             // P's word 0 in the first shared row
+    const u64* o;             // O's word holding the column under P's column 0 there
+    std::ptrdiff_t p_stride;  // P's words per row
+    std::ptrdiff_t o_stride;  // O's words per row
+    int shift;                // that column's bit in its O word
+    int rows;                 // shared rows, >= 1
+    int words;                // chunks per shared row, >= 1
+    u64 tail;                 // the valid bits of a row's last chunk
+    i64 x;                    // world column of chunk 0, bit 0
+    i64 y;                    // world row of the first shared row
 };
 
 // Sets s up for the pair; false when the rectangles share no pixel.
@@ -213,29 +212,21 @@ struct SharedWords {
     const i64 y0 = std::max(a.y, b.y);
     const i64 y1 = std::min(a.y + a.m->height(), b.y + b.m->height());
     if (x0 >= x1 || y0 >= y1) return false;
-    // Read word-aligned whichever mask spans fewer words over the shared columns (the AND
-    // does not care which one is shifted): fewer words per row.
-    const i64 a_words = ((x1 - 1 - a.x) >> 6) - ((x0 - a.x) >> 6);
-    const i64 b_words = ((x1 - 1 - b.x) >> 6) - ((x0 - b.x) >> 6);
-    const Placed& p = b_words < a_words ? b : a;  // read aligned
-    const Placed& o = b_words < a_words ? a : b;  // shifted
-    const int k0 = static_cast<int>((x0 - p.x) >> 6);
-    // The shared columns lie inside both masks, so these differences are small.
-    const int d = static_cast<int>(p.x + 64 * k0 - o.x);  // o's column under bit 0 of word k0, > -64
-    const int wo = o.m->words_per_row();
-    s.a_stride = p.m->words_per_row();
-    s.b_stride = wo;
-    s.a = p.m->row(static_cast<int>(y0 - p.y)) + k0;
-    s.b = o.m->row(static_cast<int>(y0 - o.y));
+    const bool a_aligned = a.x >= b.x;  // x0 is A's column 0
+    const Placed& p = a_aligned ? a : b;
+    const Placed& o = a_aligned ? b : a;
+    // The shared rectangle lies inside both masks, so these differences are small.
+    const int c = static_cast<int>(x0 - o.x);  // O's column under P's column 0, >= 0
+    const int width = static_cast<int>(x1 - x0);
+    s.p_stride = p.m->words_per_row();
+    s.o_stride = o.m->words_per_row();
+    s.p = p.m->row(static_cast<int>(y0 - p.y));
+    s.o = o.m->row(static_cast<int>(y0 - o.y)) + (c >> 6);
+    s.shift = c & 63;
     s.rows = static_cast<int>(y1 - y0);
-    s.words = static_cast<int>(std::min(a_words, b_words)) + 1;
-    s.q = d >> 6;  // floor: -1 when word k0 starts left of o
-    s.shift = d & 63;
-    s.first_lo = std::max(s.q, 0);
-    s.first_lo_keep = s.q >= 0 ? ~u64{0} : 0;
-    s.last_hi = std::min(s.q + s.words, wo - 1);
-    s.last_hi_keep = s.q + s.words < wo ? ~u64{0} : 0;
-    s.x = p.x + 64 * k0;
+    s.words = (width + 63) >> 6;
+    s.tail = ~u64{0} >> ((64 - (width & 63)) & 63);  // width % 64 low bits; all 64 when 0
+    s.x = x0;
     s.y = y0;
     return true;
 }
@@ -244,35 +235,44 @@ struct SharedWords {
 // rather than hi << (64 - shift): a shift by 64 is undefined, and for shift 0 this gives 0.
 inline u64 join(u64 lo, u64 hi, int shift) { return (lo >> shift) | ((hi << 1) << (63 - shift)); }
 
-// One shared row: f(i, word i of A AND the B pixels under it) for i = 0..words-1, left to
-// right, until f returns true. ra and rb are offsets of the row in s.a and s.b. kOneWord: the
-// caller knows words == 1 (always so for masks up to 64 wide), which drops the loop. Always
-// inlined, so that a popcount in f compiles for the kernel's target (count_shared).
-template <bool kOneWord, class F>
-[[gnu::always_inline]] inline bool for_row_words(const SharedWords& s, std::ptrdiff_t ra, std::ptrdiff_t rb, F&& f) {
-    const u64* a = s.a + ra;
-    const u64* b = s.b + rb;
-    u64 lo = b[s.first_lo] & s.first_lo_keep;
-    int i = 0;
-    if constexpr (!kOneWord) {
-        for (; i + 1 < s.words; ++i) {  // inner words: both B words lie inside the row
-            const u64 hi = b[s.q + i + 1];
-            if (f(i, a[i] & join(lo, hi, s.shift))) return true;
-            lo = hi;
-        }
-    }
-    return f(i, a[i] & join(lo, b[s.last_hi] & s.last_hi_keep, s.shift));
+// Chunk i of shared row r (P's word AND the O pixels under it), without the tail.
+[[gnu::always_inline]] inline u64 chunk(const SharedWords& s, int r, int i) {
+    const u64* p = s.p + r * s.p_stride;
+    const u64* o = s.o + r * s.o_stride;
+    return p[i] & join(o[i], o[i + 1], s.shift);
 }
 
-// The OR of a row's shared words: non-zero when the row has a shared pixel.
+// Row r's only chunk (s.words == 1: always so for masks up to 64 wide), tail applied.
+[[gnu::always_inline]] inline u64 only_chunk(const SharedWords& s, int r) { return chunk(s, r, 0) & s.tail; }
+
+// One shared row: f(i, chunk i) for i = 0..words-1, left to right, until f returns true.
+template <class F>
+[[gnu::always_inline]] inline bool for_row_words(const SharedWords& s, int r, F&& f) {
+    const u64* p = s.p + r * s.p_stride;
+    const u64* o = s.o + r * s.o_stride;
+    const int last = s.words - 1;
+    u64 lo = o[0];
+    for (int i = 0; i < last; ++i) {
+        const u64 hi = o[i + 1];
+        if (f(i, p[i] & join(lo, hi, s.shift))) return true;
+        lo = hi;
+    }
+    return f(last, p[last] & join(lo, o[last + 1], s.shift) & s.tail);
+}
+
+// The OR of a row's shared chunks: non-zero when the row has a shared pixel.
 template <bool kOneWord>
-[[gnu::always_inline]] inline u64 row_any(const SharedWords& s, std::ptrdiff_t ra, std::ptrdiff_t rb) {
-    u64 any = 0;
-    for_row_words<kOneWord>(s, ra, rb, [&](int, u64 w) {
-        any |= w;
-        return false;
-    });
-    return any;
+[[gnu::always_inline]] inline u64 row_any(const SharedWords& s, int r) {
+    if constexpr (kOneWord) {
+        return only_chunk(s, r);
+    } else {
+        u64 any = 0;
+        for_row_words(s, r, [&](int, u64 w) {
+            any |= w;
+            return false;
+        });
+        return any;
+    }
 }
 
 // Rows are tested kBlock at a time with one branch per block, then one at a time: where the
@@ -284,35 +284,31 @@ constexpr int kBlock = 4;
 template <bool kOneWord>
 [[gnu::always_inline]] inline unsigned block_flags(const SharedWords& s, int r0) {
     unsigned flags = 0;
-    for (int k = 0; k < kBlock; ++k)
-        flags |= static_cast<unsigned>(row_any<kOneWord>(s, std::ptrdiff_t{r0 + k} * s.a_stride,
-                                                         std::ptrdiff_t{r0 + k} * s.b_stride) != 0)
-                 << k;
+    for (int k = 0; k < kBlock; ++k) flags |= static_cast<unsigned>(row_any<kOneWord>(s, r0 + k) != 0) << k;
     return flags;
 }
 
-// The first row at or after r0 with a shared pixel, or s.rows.
+// The first row at or after r with a shared pixel, or s.rows.
 template <bool kOneWord>
 [[gnu::always_inline]] inline int first_row_from(const SharedWords& s, int r) {
     for (; r + kBlock <= s.rows; r += kBlock)
         if (const unsigned flags = block_flags<kOneWord>(s, r); flags != 0) return r + std::countr_zero(flags);
     for (; r < s.rows; ++r)
-        if (row_any<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride) != 0) return r;
+        if (row_any<kOneWord>(s, r) != 0) return r;
     return s.rows;
 }
 
 // Yes/no needs no row number: the rows of a block are simply ORed.
 template <bool kOneWord>
-bool any_shared_in(const SharedWords& s) {
+[[gnu::always_inline]] inline bool any_shared_in(const SharedWords& s) {
     int r = 0;
     for (; r + kBlock <= s.rows; r += kBlock) {
         u64 any = 0;
-        for (int k = 0; k < kBlock; ++k)
-            any |= row_any<kOneWord>(s, std::ptrdiff_t{r + k} * s.a_stride, std::ptrdiff_t{r + k} * s.b_stride);
+        for (int k = 0; k < kBlock; ++k) any |= row_any<kOneWord>(s, r + k);
         if (any != 0) return true;
     }
     for (; r < s.rows; ++r)
-        if (row_any<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride) != 0) return true;
+        if (row_any<kOneWord>(s, r) != 0) return true;
     return false;
 }
 
@@ -325,12 +321,16 @@ struct WorldPixel {
 
 // The first shared pixel of row r, known to have one.
 template <bool kOneWord>
-WorldPixel first_in_row(const SharedWords& s, int r) {
-    WorldPixel out{0, s.y + r};
-    for_row_words<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride, [&](int i, u64 w) {
-        out.x = s.x + 64 * i + std::countr_zero(w);
-        return w != 0;
-    });
+[[gnu::always_inline]] inline WorldPixel first_in_row(const SharedWords& s, int r) {
+    WorldPixel out{s.x, s.y + r};
+    if constexpr (kOneWord) {
+        out.x += std::countr_zero(only_chunk(s, r));
+    } else {
+        for_row_words(s, r, [&](int i, u64 w) {
+            out.x = s.x + 64 * i + std::countr_zero(w);
+            return w != 0;
+        });
+    }
     return out;
 }
 
@@ -339,8 +339,7 @@ WorldPixel first_in_row(const SharedWords& s, int r) {
 std::optional<WorldPixel> first_shared(const SharedWords& s, bool upward) {
     if (upward) {
         for (int r = s.rows - 1; r >= 0; --r)
-            if (row_any<false>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride) != 0)
-                return first_in_row<false>(s, r);
+            if (row_any<false>(s, r) != 0) return first_in_row<false>(s, r);
         return std::nullopt;
     }
     if (s.words == 1) {
@@ -356,11 +355,14 @@ std::optional<WorldPixel> first_shared(const SharedWords& s, bool upward) {
 // (-march=...) apply to a whole file and would let the compiler change floating-point code
 // too (FMA), which the determinism rule forbids. So the integer-only kernel is compiled
 // twice: for the popcnt target, chosen at run time when the CPU has it, and as is.
-template <bool kOneWord>
 [[gnu::always_inline]] inline int count_in_rows(const SharedWords& s) {
     int n = 0;
+    if (s.words == 1) {
+        for (int r = 0; r < s.rows; ++r) n += std::popcount(only_chunk(s, r));
+        return n;
+    }
     for (int r = 0; r < s.rows; ++r)
-        for_row_words<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride, [&](int, u64 w) {
+        for_row_words(s, r, [&](int, u64 w) {
             n += std::popcount(w);
             return false;
         });
@@ -368,16 +370,14 @@ template <bool kOneWord>
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-[[gnu::target("popcnt")]] int count_shared_popcnt(const SharedWords& s) {
-    return s.words == 1 ? count_in_rows<true>(s) : count_in_rows<false>(s);
-}
+[[gnu::target("popcnt")]] int count_shared_popcnt(const SharedWords& s) { return count_in_rows(s); }
 #endif
 
 int count_shared(const SharedWords& s) {
 #if defined(__x86_64__) && defined(__GNUC__)
     if (__builtin_cpu_supports("popcnt")) return count_shared_popcnt(s);
 #endif
-    return s.words == 1 ? count_in_rows<true>(s) : count_in_rows<false>(s);
+    return count_in_rows(s);
 }
 
 // ---------------------------------------------------------------------------------------
