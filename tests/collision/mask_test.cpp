@@ -474,6 +474,73 @@ TEST(MaskDifferential, EveryShiftAcrossWordBoundaries) {
     }
 }
 
+// Every kernel the CPU has (portable, bmi2, avx512: see mask.cpp) against reference:: on
+// masks up to 600 wide (rows of 1..10 words, past the 8 lanes of a vector) and 40 tall (row
+// blocks and their remainders), blobby or sparse, at every kind of offset: negative, huge,
+// rectangles sharing one column, one row or one pixel.
+TEST(MaskDifferential, EveryKernelEqualsReference) {
+    using detail::MaskKernel;
+    std::vector<MaskKernel> kernels{MaskKernel::portable};
+    for (const MaskKernel k : {MaskKernel::bmi2, MaskKernel::avx512})
+        if (static_cast<int>(k) <= static_cast<int>(detail::best_mask_kernel())) kernels.push_back(k);
+    Rng rng(0x6b65726eull);
+    const std::array<int, 12> special{1, 2, 63, 64, 65, 127, 128, 129, 511, 512, 513, 600};
+    int hits = 0;
+    for (int n = 0; n < 3000; ++n) {
+        const int wa = n % 3 == 0 ? special[rng.below(12)] : uniform_int(rng, 1, 600);
+        const int wb = n % 4 == 0 ? special[rng.below(12)] : uniform_int(rng, 1, 600);
+        const int ha = n % 7 == 0 ? 1 : uniform_int(rng, 1, 40);
+        const int hb = uniform_int(rng, 1, 40);
+        const Mask a = random_mask(rng, wa, ha, n % 2 == 0 ? 90 : 0);
+        const Mask b = random_mask(rng, wb, hb);
+        const int base = n % 20 == 0 ? uniform_int(rng, -2000000000, 2000000000) : uniform_int(rng, -300, 300);
+        const PlacedMask pb{&b, base, -base / 2};
+        PlacedMask pa{&a, pb.x + uniform_int(rng, -wa - 2, wb + 2), pb.y + uniform_int(rng, -ha - 2, hb + 2)};
+        switch (n % 10) {  // rectangles sharing only an edge column or row, or a corner pixel
+        case 0: pa.x = pb.x + wb - 1; break;
+        case 1: pa.x = pb.x - wa + 1; break;
+        case 2: pa.y = pb.y + hb - 1; break;
+        case 3: pa = {&a, pb.x - wa + 1, pb.y - ha + 1}; break;
+        default: break;
+        }
+        const int count = reference::count_overlap(pa, pb);
+        const std::optional<Pixel> first = reference::first_overlap(pa, pb);
+        for (const MaskKernel k : kernels) {
+            const int kk = static_cast<int>(k);
+            ASSERT_EQ(detail::count_overlap(pa, pb, k), count) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::count_overlap(pb, pa, k), count) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::overlaps(pa, pb, k), count > 0) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::overlaps(pb, pa, k), count > 0) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::first_overlap(pa, pb, k), first) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::first_overlap(pb, pa, k), first) << "case " << n << " kernel " << kk;
+        }
+        ASSERT_EQ(count_overlap(pa, pb), count);
+        ASSERT_EQ(first_overlap(pa, pb), first);
+        hits += count > 0;
+    }
+    EXPECT_GT(hits, 1000);
+    EXPECT_LT(hits, 2900);
+}
+
+TEST(MaskDifferential, EmptyMasksMissInEveryKernel) {
+    using detail::MaskKernel;
+    const Mask full = rows_of({"###", "###"});
+    const Mask none;
+    const Mask clear(200, 30);
+    const Mask flat(100, 0);
+    for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx512}) {
+        for (const Mask* m : {&none, &clear, &flat}) {
+            const PlacedMask pa{&full, 1, 1}, pb{m, 0, 0};
+            EXPECT_FALSE(detail::overlaps(pa, pb, k));
+            EXPECT_FALSE(detail::overlaps(pb, pa, k));
+            EXPECT_EQ(detail::first_overlap(pb, pa, k), std::nullopt);
+            EXPECT_EQ(detail::count_overlap(pa, pb, k), 0);
+        }
+        EXPECT_FALSE(detail::overlaps(PlacedMask{}, PlacedMask{&full, 0, 0}, k));
+        EXPECT_EQ(detail::count_overlap(PlacedMask{&full, 0, 0}, PlacedMask{}, k), 0);
+    }
+}
+
 // ================================ Mask MTD ====================================================
 
 TEST(MaskMtd, HandComputed) {

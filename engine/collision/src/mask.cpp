@@ -14,6 +14,10 @@
 #include <type_traits>
 #include <variant>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
 #include "jostle/collision.h"
 #include "jostle/core/error.h"
 
@@ -201,33 +205,44 @@ struct SharedWords {
     int rows;                 // shared rows, >= 1
     int words;                // chunks per shared row, >= 1
     u64 tail;                 // the valid bits of a row's last chunk
-    i64 x;                    // world column of chunk 0, bit 0
-    i64 y;                    // world row of the first shared row
 };
 
+// The mask and position of a query's argument (PlacedMask) or of the MTD search's translated
+// mask (Placed, whose i64 position cannot overflow).
+inline const Mask* mask_of(const PlacedMask& p) { return p.mask; }
+inline const Mask* mask_of(const Placed& p) { return p.m; }
+
 // Sets s up for the pair; false when the rectangles share no pixel.
-[[gnu::always_inline]] inline bool share_words(const Placed& a, const Placed& b, SharedWords& s) {
-    const i64 x0 = std::max(a.x, b.x);
-    const i64 x1 = std::min(a.x + a.m->width(), b.x + b.m->width());
-    const i64 y0 = std::max(a.y, b.y);
-    const i64 y1 = std::min(a.y + a.m->height(), b.y + b.m->height());
+template <class P>
+[[gnu::always_inline]] inline bool share_words(const P& a, const P& b, SharedWords& s) {
+    const Mask* const am = mask_of(a);
+    const Mask* const bm = mask_of(b);
+    const auto ax = static_cast<i64>(a.x), ay = static_cast<i64>(a.y);
+    const auto bx = static_cast<i64>(b.x), by = static_cast<i64>(b.y);
+    const i64 x0 = std::max(ax, bx);
+    const i64 x1 = std::min(ax + am->width(), bx + bm->width());
+    const i64 y0 = std::max(ay, by);
+    const i64 y1 = std::min(ay + am->height(), by + bm->height());
     if (x0 >= x1 || y0 >= y1) return false;
-    const bool a_aligned = a.x >= b.x;  // x0 is A's column 0
-    const Placed& p = a_aligned ? a : b;
-    const Placed& o = a_aligned ? b : a;
+    // P: the mask whose column 0 is x0 (A when a.x >= b.x). GCC makes this a branch; selects
+    // done with masks measured slower (they put the choice on the chain of dependent loads).
+    const bool a_aligned = ax >= bx;
+    const Mask* const pm = a_aligned ? am : bm;
+    const Mask* const om = a_aligned ? bm : am;
+    const i64 py = a_aligned ? ay : by;
+    const i64 ox = a_aligned ? bx : ax;
+    const i64 oy = a_aligned ? by : ay;
     // The shared rectangle lies inside both masks, so these differences are small.
-    const int c = static_cast<int>(x0 - o.x);  // O's column under P's column 0, >= 0
+    const int c = static_cast<int>(x0 - ox);  // O's column under P's column 0, >= 0
     const int width = static_cast<int>(x1 - x0);
-    s.p_stride = p.m->words_per_row();
-    s.o_stride = o.m->words_per_row();
-    s.p = p.m->row(static_cast<int>(y0 - p.y));
-    s.o = o.m->row(static_cast<int>(y0 - o.y)) + (c >> 6);
+    s.p_stride = pm->words_per_row();
+    s.o_stride = om->words_per_row();
+    s.p = pm->row(static_cast<int>(y0 - py));
+    s.o = om->row(static_cast<int>(y0 - oy)) + (c >> 6);
     s.shift = c & 63;
     s.rows = static_cast<int>(y1 - y0);
     s.words = (width + 63) >> 6;
     s.tail = ~u64{0} >> ((64 - (width & 63)) & 63);  // width % 64 low bits; all 64 when 0
-    s.x = x0;
-    s.y = y0;
     return true;
 }
 
@@ -312,49 +327,52 @@ template <bool kOneWord>
     return false;
 }
 
-bool any_shared(const SharedWords& s) { return s.words == 1 ? any_shared_in<true>(s) : any_shared_in<false>(s); }
+[[gnu::always_inline]] inline bool any_shared(const SharedWords& s) {
+    return s.words == 1 ? any_shared_in<true>(s) : any_shared_in<false>(s);
+}
 
-struct WorldPixel {
-    i64 x = 0;
-    i64 y = 0;
+// A shared pixel as its column and row in the shared rectangle (world x0 + col, y0 + row);
+// row -1: none. Eight bytes, so the kernels return it in a register.
+struct Offset {
+    int col;
+    int row;
+    bool found() const { return row >= 0; }
 };
+constexpr Offset kNone{0, -1};
 
 // The first shared pixel of row r, known to have one.
 template <bool kOneWord>
-[[gnu::always_inline]] inline WorldPixel first_in_row(const SharedWords& s, int r) {
-    WorldPixel out{s.x, s.y + r};
+[[gnu::always_inline]] inline Offset first_in_row(const SharedWords& s, int r) {
+    Offset out{0, r};
     if constexpr (kOneWord) {
-        out.x += std::countr_zero(only_chunk(s, r));
+        out.col = std::countr_zero(only_chunk(s, r));
     } else {
         for_row_words(s, r, [&](int i, u64 w) {
-            out.x = s.x + 64 * i + std::countr_zero(w);
+            out.col = 64 * i + std::countr_zero(w);
             return w != 0;
         });
     }
     return out;
 }
 
-// The first shared pixel, rows top to bottom (bottom to top when `upward`, for the MTD
-// search; not worth blocks there), left to right.
-std::optional<WorldPixel> first_shared(const SharedWords& s, bool upward) {
-    if (upward) {
-        for (int r = s.rows - 1; r >= 0; --r)
-            if (row_any<false>(s, r) != 0) return first_in_row<false>(s, r);
-        return std::nullopt;
-    }
-    if (s.words == 1) {
-        const int r = first_row_from<true>(s, 0);
-        return r < s.rows ? std::optional(first_in_row<true>(s, r)) : std::nullopt;
-    }
-    const int r = first_row_from<false>(s, 0);
-    return r < s.rows ? std::optional(first_in_row<false>(s, r)) : std::nullopt;
+// The first shared pixel of the lowest row that has one (the MTD search's witness when it
+// scans upward; not worth blocks there).
+Offset last_row_first_shared(const SharedWords& s) {
+    for (int r = s.rows - 1; r >= 0; --r)
+        if (row_any<false>(s, r) != 0) return first_in_row<false>(s, r);
+    return kNone;
 }
 
-// Counting needs a popcount per word. Baseline x86-64 has no POPCNT instruction, so
-// std::popcount there is a call into libgcc (__popcountdi2); the flags that would enable it
-// (-march=...) apply to a whole file and would let the compiler change floating-point code
-// too (FMA), which the determinism rule forbids. So the integer-only kernel is compiled
-// twice: for the popcnt target, chosen at run time when the CPU has it, and as is.
+// The first shared pixel, rows top to bottom, left to right.
+[[gnu::always_inline]] inline Offset first_shared(const SharedWords& s) {
+    if (s.words == 1) {
+        const int r = first_row_from<true>(s, 0);
+        return r < s.rows ? first_in_row<true>(s, r) : kNone;
+    }
+    const int r = first_row_from<false>(s, 0);
+    return r < s.rows ? first_in_row<false>(s, r) : kNone;
+}
+
 [[gnu::always_inline]] inline int count_in_rows(const SharedWords& s) {
     int n = 0;
     if (s.words == 1) {
@@ -369,15 +387,200 @@ std::optional<WorldPixel> first_shared(const SharedWords& s, bool upward) {
     return n;
 }
 
+// ---------------------------------------------------------------------------------------
+// The kernels by instruction set, chosen at run time
+// ---------------------------------------------------------------------------------------
+// The kernels above are integer-only and always inlined, so each copy below compiles them for
+// its own [[gnu::target]]. Whole-file flags (-march=...) would let the compiler change
+// floating-point code too (FMA), which the determinism rule forbids; a target attribute on an
+// integer-only function cannot. Every copy gives the same answers (tests run each one the CPU
+// has against reference::):
+//   portable  baseline x86-64 (or any other machine): std::popcount is a libgcc call there
+//   bmi2      POPCNT, TZCNT and BMI2's shifts by any register (the join's two shifts need no
+//             shuffling through CL)
+//   avx512    bmi2, and rows of 2..8 chunks as one vector each: VPSHRDVQ joins 8 word pairs in
+//             one instruction (VBMI2), VPOPCNTQ counts them. Rows of one chunk stay scalar (a
+//             gather of 8 such rows measured slower), and the setup stays in bmi2 code: the
+//             vector code's frame costs more than a small query's work.
+// Each kernel is a whole query, from the setup to the answer, so that the shared words stay in
+// registers: a query on small masks is mostly setup.
+
+using MaskKernel = detail::MaskKernel;
+
 #if defined(__x86_64__) && defined(__GNUC__)
-[[gnu::target("popcnt")]] int count_shared_popcnt(const SharedWords& s) { return count_in_rows(s); }
+#define JOSTLE_MASK_X86_KERNELS 1
+#define JOSTLE_BMI2 "popcnt,bmi,bmi2"
+#define JOSTLE_AVX512 "popcnt,bmi,bmi2,avx2,avx512f,avx512vl,avx512bw,avx512vpopcntdq,avx512vbmi2"
+
+// A shared row of 2..8 chunks as one vector: lane i is chunk i (lanes past the row are 0).
+struct RowVectors {
+    __mmask8 lanes;  // the row's chunks
+    __m512i tail;    // ~0 in every lane but the last chunk's, which holds s.tail
+    __m512i shift;   // s.shift in every lane
+};
+
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline RowVectors row_vectors(const SharedWords& s) {
+    RowVectors v;
+    v.lanes = static_cast<__mmask8>((1u << s.words) - 1u);
+    v.tail = _mm512_mask_set1_epi64(_mm512_set1_epi64(-1), static_cast<__mmask8>(1u << (s.words - 1)),
+                                    static_cast<long long>(s.tail));
+    v.shift = _mm512_set1_epi64(s.shift);
+    return v;
+}
+
+// Masked loads read only the row's words (a masked-off lane is never read); lane i of `hi` is
+// O's word i + 1, the readable neighbour of the last chunk (see SharedWords).
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i row_vector(const SharedWords& s, const RowVectors& v,
+                                                                              int r) {
+    const u64* p = s.p + r * s.p_stride;
+    const u64* o = s.o + r * s.o_stride;
+    const __m512i pw = _mm512_maskz_loadu_epi64(v.lanes, p);
+    const __m512i lo = _mm512_maskz_loadu_epi64(v.lanes, o);
+    const __m512i hi = _mm512_maskz_loadu_epi64(v.lanes, o + 1);
+    return _mm512_and_si512(_mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, v.shift)), v.tail);
+}
+
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline bool nonzero(__m512i w) {
+    return _mm512_test_epi64_mask(w, w) != 0;
+}
+
+// The first row (from 0) with a shared pixel, or s.rows; s.words in 2..8.
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int first_row_avx512(const SharedWords& s) {
+    const RowVectors v = row_vectors(s);
+    int r = 0;
+    for (; r + kBlock <= s.rows; r += kBlock) {
+        unsigned flags = 0;
+        for (int k = 0; k < kBlock; ++k) flags |= static_cast<unsigned>(nonzero(row_vector(s, v, r + k))) << k;
+        if (flags != 0) return r + std::countr_zero(flags);
+    }
+    for (; r < s.rows; ++r)
+        if (nonzero(row_vector(s, v, r))) return r;
+    return s.rows;
+}
+
+// Yes/no: the rows of a block are ORed; s.words in 2..8.
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline bool any_avx512(const SharedWords& s) {
+    const RowVectors v = row_vectors(s);
+    int r = 0;
+    for (; r + kBlock <= s.rows; r += kBlock) {
+        __m512i any = row_vector(s, v, r);
+        for (int k = 1; k < kBlock; ++k) any = _mm512_or_si512(any, row_vector(s, v, r + k));
+        if (nonzero(any)) return true;
+    }
+    for (; r < s.rows; ++r)
+        if (nonzero(row_vector(s, v, r))) return true;
+    return false;
+}
+
+// s.words in 2..8.
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int count_avx512(const SharedWords& s) {
+    const RowVectors v = row_vectors(s);
+    __m512i sum = _mm512_setzero_si512();
+    for (int r = 0; r < s.rows; ++r) sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(row_vector(s, v, r)));
+    // (Stored and added rather than _mm512_reduce_add_epi64, whose GCC 12 header warns.)
+    std::array<long long, 8> lanes{};
+    _mm512_storeu_si512(lanes.data(), sum);
+    long long n = 0;
+    for (const long long lane : lanes) n += lane;
+    return static_cast<int>(n);
+}
 #endif
 
-int count_shared(const SharedWords& s) {
-#if defined(__x86_64__) && defined(__GNUC__)
-    if (__builtin_cpu_supports("popcnt")) return count_shared_popcnt(s);
+// The queries, for a kernel: kVector uses the avx512 row functions for rows of 2..8 chunks.
+template <class P>
+[[gnu::always_inline]] inline bool any_query(const P& a, const P& b) {
+    SharedWords s;
+    return share_words(a, b, s) && any_shared(s);
+}
+
+template <class P>
+[[gnu::always_inline]] inline Offset first_query(const P& a, const P& b) {
+    SharedWords s;
+    return share_words(a, b, s) ? first_shared(s) : kNone;
+}
+
+template <class P>
+[[gnu::always_inline]] inline int count_query(const P& a, const P& b) {
+    SharedWords s;
+    return share_words(a, b, s) ? count_in_rows(s) : 0;
+}
+
+bool any_portable(const PlacedMask& a, const PlacedMask& b) { return any_query(a, b); }
+Offset first_portable(const PlacedMask& a, const PlacedMask& b) { return first_query(a, b); }
+int count_portable(const PlacedMask& a, const PlacedMask& b) { return count_query(a, b); }
+
+#ifdef JOSTLE_MASK_X86_KERNELS
+[[gnu::target(JOSTLE_BMI2)]] bool any_bmi2(const PlacedMask& a, const PlacedMask& b) { return any_query(a, b); }
+[[gnu::target(JOSTLE_BMI2)]] Offset first_bmi2(const PlacedMask& a, const PlacedMask& b) {
+    return first_query(a, b);
+}
+[[gnu::target(JOSTLE_BMI2)]] int count_bmi2(const PlacedMask& a, const PlacedMask& b) { return count_query(a, b); }
+// The avx512 kernel: the row vectors for rows of 2..8 chunks, the bmi2 code for the others.
+[[gnu::target(JOSTLE_AVX512)]] bool any_vector(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    if (!share_words(a, b, s)) return false;
+    return s.words > 1 && s.words <= 8 ? any_avx512(s) : any_shared(s);
+}
+[[gnu::target(JOSTLE_AVX512)]] Offset first_vector(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    if (!share_words(a, b, s)) return kNone;
+    if (s.words == 1 || s.words > 8) return first_shared(s);
+    const int r = first_row_avx512(s);
+    return r < s.rows ? first_in_row<false>(s, r) : kNone;
+}
+[[gnu::target(JOSTLE_AVX512)]] int count_vector(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    if (!share_words(a, b, s)) return 0;
+    return s.words > 1 && s.words <= 8 ? count_avx512(s) : count_in_rows(s);
+}
+
+bool cpu_has(MaskKernel k) {
+    switch (k) {
+    case MaskKernel::portable: return true;
+    case MaskKernel::bmi2:
+        return __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
+    case MaskKernel::avx512:
+        return cpu_has(MaskKernel::bmi2) && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") &&
+               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+               __builtin_cpu_supports("avx512vpopcntdq") && __builtin_cpu_supports("avx512vbmi2");
+    }
+    return false;
+}
+#else
+bool cpu_has(MaskKernel k) { return k == MaskKernel::portable; }
 #endif
-    return count_in_rows(s);
+
+// The kernel asked for, or the best one the CPU has below it.
+MaskKernel usable_kernel(MaskKernel k) {
+    while (k != MaskKernel::portable && !cpu_has(k)) k = static_cast<MaskKernel>(static_cast<int>(k) - 1);
+    return k;
+}
+
+bool any_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+#ifdef JOSTLE_MASK_X86_KERNELS
+    if (k == MaskKernel::avx512) return any_vector(a, b);
+    if (k == MaskKernel::bmi2) return any_bmi2(a, b);
+#endif
+    (void)k;
+    return any_portable(a, b);
+}
+
+Offset first_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+#ifdef JOSTLE_MASK_X86_KERNELS
+    if (k == MaskKernel::avx512) return first_vector(a, b);
+    if (k == MaskKernel::bmi2) return first_bmi2(a, b);
+#endif
+    (void)k;
+    return first_portable(a, b);
+}
+
+int count_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+#ifdef JOSTLE_MASK_X86_KERNELS
+    if (k == MaskKernel::avx512) return count_vector(a, b);
+    if (k == MaskKernel::bmi2) return count_bmi2(a, b);
+#endif
+    (void)k;
+    return count_portable(a, b);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -498,13 +701,17 @@ struct MaskPairProblem {
         if (ax + box_a.x0 > b.x + box_b.x1 || ax + box_a.x1 < b.x + box_b.x0 ||
             ay + box_a.y0 > b.y + box_b.y1 || ay + box_a.y1 < b.y + box_b.y0)
             return false;
-        SharedWords s;
-        if (!share_words(Placed{a.m, ax, ay}, b, s)) return false;
-        const auto witness = first_shared(s, dir < 0);
-        if (!witness) return false;
-                // A's pixel on (wx, wy) stays on B's pixels while B's column runs on in the scan direction.
-        const int bx = static_cast<int>(witness->x - b.x);
-        const int by = static_cast<int>(witness->y - b.y);
+        const Placed moved{a.m, ax, ay};
+        Offset at = kNone;
+        if (dir > 0) {
+            at = first_query(moved, b);
+        } else if (SharedWords s; share_words(moved, b, s)) {
+            at = last_row_first_shared(s);
+        }
+        if (!at.found()) return false;
+        // A's pixel there stays on B's pixels while B's column runs on in the scan direction.
+        const int bx = static_cast<int>(std::max(ax, b.x) + at.col - b.x);
+        const int by = static_cast<int>(std::max(ay, b.y) + at.row - b.y);
         int run = 1;
         while (b.m->get(bx, by + dir * run)) ++run;
         jump = run;
@@ -993,25 +1200,50 @@ Manifold collide_region(const PlacedMask& a, const std::optional<R>& r) {
 // Mask vs mask (bit-packed)
 // ---------------------------------------------------------------------------------------
 
+namespace {
+
+// The best kernel this CPU has, found once (a constant of the machine, not state).
+MaskKernel best_kernel() {
+    static const MaskKernel best = usable_kernel(MaskKernel::avx512);
+    return best;
+}
+
 // A 0-wide or 0-high mask shares no pixel: share_words finds that without a test of its own.
-bool overlaps(const PlacedMask& a, const PlacedMask& b) {
-    SharedWords s;
-    return a.mask != nullptr && b.mask != nullptr && share_words(placed(a), placed(b), s) && any_shared(s);
+bool overlaps_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    return a.mask != nullptr && b.mask != nullptr && any_with(a, b, k);
 }
 
+std::optional<Pixel> first_overlap_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    if (a.mask == nullptr || b.mask == nullptr) return std::nullopt;
+    const Offset at = first_with(a, b, k);
+    if (!at.found()) return std::nullopt;
+    // The shared rectangle's corner is (max x, max y); the pixel is inside both masks.
+    return Pixel{static_cast<int>(std::max<i64>(a.x, b.x) + at.col), static_cast<int>(std::max<i64>(a.y, b.y) + at.row)};
+}
+
+int count_overlap_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    if (a.mask == nullptr || b.mask == nullptr) return 0;
+    return count_with(a, b, k);
+}
+
+}  // namespace
+
+bool overlaps(const PlacedMask& a, const PlacedMask& b) { return overlaps_with(a, b, best_kernel()); }
 std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b) {
-    SharedWords s;
-    if (a.mask == nullptr || b.mask == nullptr || !share_words(placed(a), placed(b), s)) return std::nullopt;
-    const auto p = first_shared(s, false);
-    if (!p) return std::nullopt;
-    return Pixel{static_cast<int>(p->x), static_cast<int>(p->y)};
+    return first_overlap_with(a, b, best_kernel());
 }
+int count_overlap(const PlacedMask& a, const PlacedMask& b) { return count_overlap_with(a, b, best_kernel()); }
 
-int count_overlap(const PlacedMask& a, const PlacedMask& b) {
-    SharedWords s;
-    if (a.mask == nullptr || b.mask == nullptr || !share_words(placed(a), placed(b), s)) return 0;
-    return count_shared(s);
+namespace detail {
+MaskKernel best_mask_kernel() { return best_kernel(); }
+bool overlaps(const PlacedMask& a, const PlacedMask& b, MaskKernel k) { return overlaps_with(a, b, usable_kernel(k)); }
+std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    return first_overlap_with(a, b, usable_kernel(k));
 }
+int count_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    return count_overlap_with(a, b, usable_kernel(k));
+}
+}  // namespace detail
 
 Manifold collide(const PlacedMask& a, const PlacedMask& b) {
     if (!overlaps(a, b)) return {};
