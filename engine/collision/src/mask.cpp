@@ -444,6 +444,79 @@ struct RowVectors {
     return _mm512_test_epi64_mask(w, w) != 0;
 }
 
+// The sum of the 8 lanes (stored and added: _mm512_reduce_add_epi64's GCC 12 header warns).
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int lane_sum(__m512i v) {
+    std::array<long long, 8> lanes{};
+    _mm512_storeu_si512(lanes.data(), v);
+    long long n = 0;
+    for (const long long lane : lanes) n += lane;
+    return static_cast<int>(n);
+}
+
+// Rows of one chunk (shared width <= 64) from masks of 1 or 2 words per row, 8 rows per vector:
+// lane k is row r + k's chunk, tail applied, 0 past the last row. A stride-1 mask's 8 words
+// are one load; a stride-2 mask's 16 words are two, split into even and odd lanes by one
+// permute each. O's word after a row's chunk word is the next word in memory at both strides
+// (the padding word after the last row included), so the same loads give it. Masked loads
+// read only the lanes they keep: never past rows r .. s.rows - 1 (and their following word).
+template <int kPStride, int kOStride>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i eight_rows(const SharedWords& s, int r,
+                                                                              __m512i shift, __m512i tail) {
+    const int left = std::min(s.rows - r, 8);
+    const unsigned words = (1u << left) - 1u;                   // lane k: row r + k exists
+    const unsigned pairs = (1u << (2 * left)) - 1u;             // 2 lanes a row, 16 at most
+    const __m512i even = _mm512_set_epi64(14, 12, 10, 8, 6, 4, 2, 0);
+    const __m512i odd = _mm512_set_epi64(15, 13, 11, 9, 7, 5, 3, 1);
+    __m512i pw;
+    if constexpr (kPStride == 1) {
+        pw = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(words), s.p + r);
+    } else {
+        const u64* p = s.p + 2 * r;
+        const __m512i v0 = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(pairs), p);
+        const __m512i v1 = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(pairs >> 8), p + 8);
+        pw = _mm512_permutex2var_epi64(v0, even, v1);
+    }
+    __m512i lo;
+    __m512i hi;
+    if constexpr (kOStride == 1) {
+        lo = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(words), s.o + r);
+        hi = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(words), s.o + r + 1);
+    } else {
+        const u64* o = s.o + 2 * r;
+        const __m512i v0 = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(pairs), o);
+        const __m512i v1 = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(pairs >> 8), o + 8);
+        lo = _mm512_permutex2var_epi64(v0, even, v1);
+        hi = _mm512_permutex2var_epi64(v0, odd, v1);
+    }
+    return _mm512_and_si512(_mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, shift)), tail);
+}
+
+// 4 * P's stride + O's stride when both are 1 or 2 words (5, 6, 9, 10), else 0.
+inline int stride_pair(const SharedWords& s) {
+    return s.p_stride <= 2 && s.o_stride <= 2 ? static_cast<int>(4 * s.p_stride + s.o_stride) : 0;
+}
+
+// The first row with a shared pixel, 8 rows a test, or s.rows; rows of one chunk, strides 1-2.
+template <int kP, int kO>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int first_row_eight(const SharedWords& s) {
+    const __m512i shift = _mm512_set1_epi64(s.shift);
+    const __m512i tail = _mm512_set1_epi64(static_cast<long long>(s.tail));
+    for (int r = 0; r < s.rows; r += 8) {
+        const __m512i w = eight_rows<kP, kO>(s, r, shift, tail);
+        if (const unsigned hit = _mm512_test_epi64_mask(w, w); hit != 0) return r + std::countr_zero(hit);
+    }
+    return s.rows;
+}
+
+template <int kP, int kO>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int count_eight(const SharedWords& s) {
+    const __m512i shift = _mm512_set1_epi64(s.shift);
+    const __m512i tail = _mm512_set1_epi64(static_cast<long long>(s.tail));
+    __m512i sum = _mm512_setzero_si512();
+    for (int r = 0; r < s.rows; r += 8) sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(eight_rows<kP, kO>(s, r, shift, tail)));
+    return lane_sum(sum);
+}
+
 // The first row (from 0) with a shared pixel, or s.rows; s.words in 2..8.
 [[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int first_row_avx512(const SharedWords& s) {
     const RowVectors v = row_vectors(s);
@@ -477,16 +550,11 @@ struct RowVectors {
     const RowVectors v = row_vectors(s);
     __m512i sum = _mm512_setzero_si512();
     for (int r = 0; r < s.rows; ++r) sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(row_vector(s, v, r)));
-    // (Stored and added rather than _mm512_reduce_add_epi64, whose GCC 12 header warns.)
-    std::array<long long, 8> lanes{};
-    _mm512_storeu_si512(lanes.data(), sum);
-    long long n = 0;
-    for (const long long lane : lanes) n += lane;
-    return static_cast<int>(n);
+    return lane_sum(sum);
 }
 #endif
 
-// The queries, for a kernel: kVector uses the avx512 row functions for rows of 2..8 chunks.
+// The queries, compiled into each kernel below.
 template <class P>
 [[gnu::always_inline]] inline bool any_query(const P& a, const P& b) {
     SharedWords s;
@@ -515,23 +583,54 @@ int count_portable(const PlacedMask& a, const PlacedMask& b) { return count_quer
     return first_query(a, b);
 }
 [[gnu::target(JOSTLE_BMI2)]] int count_bmi2(const PlacedMask& a, const PlacedMask& b) { return count_query(a, b); }
-// The avx512 kernel: the row vectors for rows of 2..8 chunks, the bmi2 code for the others.
+
+// The avx512 kernel: 8 rows a vector for rows of one chunk from masks of 1 or 2 words per
+// row, a vector a row for rows of 2..8 chunks, the bmi2 code for the others.
 [[gnu::target(JOSTLE_AVX512)]] bool any_vector(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
     if (!share_words(a, b, s)) return false;
-    return s.words > 1 && s.words <= 8 ? any_avx512(s) : any_shared(s);
+    if (s.words == 1) {
+        switch (stride_pair(s)) {
+        case 5: return first_row_eight<1, 1>(s) < s.rows;
+        case 6: return first_row_eight<1, 2>(s) < s.rows;
+        case 9: return first_row_eight<2, 1>(s) < s.rows;
+        case 10: return first_row_eight<2, 2>(s) < s.rows;
+        default: return any_shared(s);
+        }
+    }
+    return s.words <= 8 ? any_avx512(s) : any_shared(s);
 }
 [[gnu::target(JOSTLE_AVX512)]] Offset first_vector(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
     if (!share_words(a, b, s)) return kNone;
-    if (s.words == 1 || s.words > 8) return first_shared(s);
-    const int r = first_row_avx512(s);
+    int r = 0;
+    if (s.words == 1) {
+        switch (stride_pair(s)) {
+        case 5: r = first_row_eight<1, 1>(s); break;
+        case 6: r = first_row_eight<1, 2>(s); break;
+        case 9: r = first_row_eight<2, 1>(s); break;
+        case 10: r = first_row_eight<2, 2>(s); break;
+        default: return first_shared(s);
+        }
+        return r < s.rows ? first_in_row<true>(s, r) : kNone;
+    }
+    if (s.words > 8) return first_shared(s);
+    r = first_row_avx512(s);
     return r < s.rows ? first_in_row<false>(s, r) : kNone;
 }
 [[gnu::target(JOSTLE_AVX512)]] int count_vector(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
     if (!share_words(a, b, s)) return 0;
-    return s.words > 1 && s.words <= 8 ? count_avx512(s) : count_in_rows(s);
+    if (s.words == 1) {
+        switch (stride_pair(s)) {
+        case 5: return count_eight<1, 1>(s);
+        case 6: return count_eight<1, 2>(s);
+        case 9: return count_eight<2, 1>(s);
+        case 10: return count_eight<2, 2>(s);
+        default: return count_in_rows(s);
+        }
+    }
+    return s.words <= 8 ? count_avx512(s) : count_in_rows(s);
 }
 
 bool cpu_has(MaskKernel k) {
