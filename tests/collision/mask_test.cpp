@@ -493,7 +493,11 @@ TEST(MaskDifferential, EveryKernelEqualsReference) {
         const int hb = uniform_int(rng, 1, 40);
         const Mask a = random_mask(rng, wa, ha, n % 2 == 0 ? 90 : 0);
         const Mask b = random_mask(rng, wb, hb);
-        const int base = n % 20 == 0 ? uniform_int(rng, -2000000000, 2000000000) : uniform_int(rng, -300, 300);
+        // Now and then far out, up to the ends of int (a mask there still fits in int).
+        const int far = n % 2 == 0 ? std::numeric_limits<int>::max() - 1300 : std::numeric_limits<int>::min() + 1300;
+        const int base = n % 97 == 0 ? far
+                         : n % 20 == 0 ? uniform_int(rng, -1000000000, 1000000000)
+                                       : uniform_int(rng, -300, 300);
         const PlacedMask pb{&b, base, -base / 2};
         PlacedMask pa{&a, pb.x + uniform_int(rng, -wa - 2, wb + 2), pb.y + uniform_int(rng, -ha - 2, hb + 2)};
         switch (n % 10) {  // rectangles sharing only an edge column or row, or a corner pixel
