@@ -526,6 +526,33 @@ TEST(MaskDifferential, EveryKernelEqualsReference) {
     EXPECT_LT(hits, 2900);
 }
 
+// Masks of the same number of words per row (2, 3 or 4: the AVX-512 kernel packs 4 or 2 such
+// rows into a vector) and of 1 or 2 (8 rows a vector), every kernel against reference::.
+TEST(MaskDifferential, EqualStridesInEveryKernel) {
+    using detail::MaskKernel;
+    Rng rng(0x73747269ull);
+    const std::array<std::array<int, 2>, 5> strides{{{1, 64}, {65, 128}, {129, 192}, {193, 256}, {1, 128}}};
+    for (int n = 0; n < 2000; ++n) {
+        const auto& range = strides[static_cast<std::size_t>(n) % strides.size()];
+        const int wa = uniform_int(rng, range[0], range[1]);
+        const int wb = uniform_int(rng, range[0], range[1]);
+        const int ha = uniform_int(rng, 1, 30);
+        const int hb = uniform_int(rng, 1, 30);
+        const Mask a = random_mask(rng, wa, ha, n % 3 == 0 ? 0 : 97);
+        const Mask b = random_mask(rng, wb, hb, n % 3 == 0 ? 0 : 97);
+        const PlacedMask pb{&b, uniform_int(rng, -100, 100), uniform_int(rng, -100, 100)};
+        const PlacedMask pa{&a, pb.x + uniform_int(rng, -wa, wb), pb.y + uniform_int(rng, -ha, hb)};
+        const int count = reference::count_overlap(pa, pb);
+        const std::optional<Pixel> first = reference::first_overlap(pa, pb);
+        for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx512}) {
+            ASSERT_EQ(detail::count_overlap(pa, pb, k), count) << "case " << n;
+            ASSERT_EQ(detail::overlaps(pb, pa, k), count > 0) << "case " << n;
+            ASSERT_EQ(detail::first_overlap(pa, pb, k), first) << "case " << n;
+            ASSERT_EQ(detail::first_overlap(pb, pa, k), first) << "case " << n;
+        }
+    }
+}
+
 TEST(MaskDifferential, EmptyMasksMissInEveryKernel) {
     using detail::MaskKernel;
     const Mask full = rows_of({"###", "###"});

@@ -517,6 +517,80 @@ template <int kP, int kO>
     return lane_sum(sum);
 }
 
+// Rows of two masks with the same stride of kS = 2 or 4 words (up to 128 or 256 wide), 8 / kS
+// rows per vector: such rows lie kS words apart in both masks, so one load of 8 words holds
+// 8 / kS rows, and lane i * kS + c is chunk c of row r + i (lanes past a row's chunks, or past
+// the last row, are masked off and never read). Lanes run in reading order.
+struct PackedRows {
+    unsigned lanes;  // the chunks of 8 / kS rows
+    __m512i tail;    // s.tail in each row's last chunk, ~0 elsewhere
+    __m512i shift;
+};
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline PackedRows packed_rows(const SharedWords& s) {
+    const unsigned row = (1u << s.words) - 1u;  // s.words <= kS: the shared width fits in both
+    unsigned lanes = 0;
+    unsigned last = 0;
+    for (int i = 0; i < 8 / kS; ++i) {
+        lanes |= row << (i * kS);
+        last |= 1u << (i * kS + s.words - 1);
+    }
+    return {lanes, _mm512_mask_set1_epi64(_mm512_set1_epi64(-1), static_cast<__mmask8>(last), static_cast<long long>(s.tail)),
+            _mm512_set1_epi64(s.shift)};
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i packed_vector(const SharedWords& s,
+                                                                                 const PackedRows& v, int r) {
+    const int left = s.rows - r;
+    const unsigned rows = left >= 8 / kS ? 0xffu : (1u << (left * kS)) - 1u;
+    const auto k = static_cast<__mmask8>(v.lanes & rows);
+    const u64* p = s.p + r * kS;
+    const u64* o = s.o + r * kS;
+    const __m512i pw = _mm512_maskz_loadu_epi64(k, p);
+    const __m512i lo = _mm512_maskz_loadu_epi64(k, o);
+    const __m512i hi = _mm512_maskz_loadu_epi64(k, o + 1);
+    return _mm512_and_si512(_mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, v.shift)), v.tail);
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int count_packed(const SharedWords& s) {
+    const PackedRows v = packed_rows<kS>(s);
+    __m512i sum = _mm512_setzero_si512();
+    for (int r = 0; r < s.rows; r += 8 / kS) sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(packed_vector<kS>(s, v, r)));
+    return lane_sum(sum);
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline Offset first_packed(const SharedWords& s) {
+    const PackedRows v = packed_rows<kS>(s);
+    for (int r = 0; r < s.rows; r += 8 / kS) {
+        const __m512i w = packed_vector<kS>(s, v, r);
+        if (const unsigned hit = _mm512_test_epi64_mask(w, w); hit != 0) {
+            const int lane = std::countr_zero(hit);
+            std::array<u64, 8> words;
+            _mm512_storeu_si512(words.data(), w);
+            return Offset{64 * (lane % kS) + std::countr_zero(words[static_cast<std::size_t>(lane)]), r + lane / kS};
+        }
+    }
+    return kNone;
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline bool any_packed(const SharedWords& s) {
+    const PackedRows v = packed_rows<kS>(s);
+    for (int r = 0; r < s.rows; r += 8 / kS)
+        if (nonzero(packed_vector<kS>(s, v, r))) return true;
+    return false;
+}
+
+// 2 or 4 when both masks' rows are that many words (rows of 2..4 chunks pack into vectors).
+inline int packed_stride(const SharedWords& s) {
+    return s.words > 1 && s.p_stride == s.o_stride && (s.p_stride == 2 || s.p_stride == 4) ? static_cast<int>(s.p_stride)
+                                                                                             : 0;
+}
+
 // The first row (from 0) with a shared pixel, or s.rows; s.words in 2..8.
 [[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int first_row_avx512(const SharedWords& s) {
     const RowVectors v = row_vectors(s);
@@ -585,7 +659,8 @@ int count_portable(const PlacedMask& a, const PlacedMask& b) { return count_quer
 [[gnu::target(JOSTLE_BMI2)]] int count_bmi2(const PlacedMask& a, const PlacedMask& b) { return count_query(a, b); }
 
 // The avx512 kernel: 8 rows a vector for rows of one chunk from masks of 1 or 2 words per
-// row, a vector a row for rows of 2..8 chunks, the bmi2 code for the others.
+// row; 4 or 2 rows a vector for rows of 2..4 chunks from two masks both 2 or 4 words wide; a
+// vector a row for the other rows of 2..8 chunks; the bmi2 code for the rest.
 [[gnu::target(JOSTLE_AVX512)]] bool any_vector(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
     if (!share_words(a, b, s)) return false;
@@ -598,6 +673,7 @@ int count_portable(const PlacedMask& a, const PlacedMask& b) { return count_quer
         default: return any_shared(s);
         }
     }
+    if (const int packed = packed_stride(s); packed != 0) return packed == 2 ? any_packed<2>(s) : any_packed<4>(s);
     return s.words <= 8 ? any_avx512(s) : any_shared(s);
 }
 [[gnu::target(JOSTLE_AVX512)]] Offset first_vector(const PlacedMask& a, const PlacedMask& b) {
@@ -614,6 +690,7 @@ int count_portable(const PlacedMask& a, const PlacedMask& b) { return count_quer
         }
         return r < s.rows ? first_in_row<true>(s, r) : kNone;
     }
+    if (const int packed = packed_stride(s); packed != 0) return packed == 2 ? first_packed<2>(s) : first_packed<4>(s);
     if (s.words > 8) return first_shared(s);
     r = first_row_avx512(s);
     return r < s.rows ? first_in_row<false>(s, r) : kNone;
@@ -630,6 +707,7 @@ int count_portable(const PlacedMask& a, const PlacedMask& b) { return count_quer
         default: return count_in_rows(s);
         }
     }
+    if (const int packed = packed_stride(s); packed != 0) return packed == 2 ? count_packed<2>(s) : count_packed<4>(s);
     return s.words <= 8 ? count_avx512(s) : count_in_rows(s);
 }
 
