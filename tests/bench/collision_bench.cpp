@@ -53,8 +53,6 @@
 //   px/ns      masks: pixels a reading-order scan of the shared rectangles examines (up to the
 //              first shared pixel for yes/no and first, all of them for the count) per ns; the
 //              ceiling of a bit-packed scan is 64 pixels per AND of two words
-//   px/query, rows/query, width   masks: those pixels and the shared rows they lie in, per
-//              query, and the shared rectangle's mean width (the work behind the rates)
 //
 // CHECKS, over the whole pool right after timing, on the results the timed loop stored (the
 // other side is computed afresh; for Box2D's manifolds the loop keeps the hit, which is what
@@ -979,9 +977,6 @@ struct MaskPool {
     std::vector<int> count;
     double pixels_to_first = 0.0;
     double pixels_all = 0.0;
-    double rows_to_first = 0.0;  // shared rows a reading-order scan visits, up to the first shared pixel's
-    double rows_all = 0.0;
-    double width = 0.0;          // shared rectangle's width, summed over the pool
 };
 
 MaskPool make_mask_pool(int side) {
@@ -1005,9 +1000,6 @@ MaskPool make_mask_pool(int side) {
         const std::optional<Pixel>& f = p.first.back();
         p.pixels_all += all;
         p.pixels_to_first += f ? static_cast<double>(pixel_at(f->x - r.x0, f->y - r.y0, r.x1 - r.x0) + 1) : all;
-        p.rows_to_first += static_cast<double>(f ? f->y - r.y0 + 1 : r.y1 - r.y0);
-        p.rows_all += static_cast<double>(r.y1 - r.y0);
-        p.width += static_cast<double>(r.x1 - r.x0);
     }
     return p;
 }
@@ -1056,7 +1048,6 @@ void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query,
     Checker c;
     double ns = 0.0;
     double pixels = p.pixels_to_first;
-    double rows = p.rows_to_first;
     if (query == MaskQuery::count) {
         std::vector<int> out(kPool);
         ns = time_mask(
@@ -1066,7 +1057,6 @@ void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query,
         for (std::size_t i = 0; i < kPool; ++i)
             if (out[i] != p.count[i]) c.fail(i, fmt("count %d, the lecture's loop counts %d", out[i], p.count[i]));
         pixels = p.pixels_all;
-        rows = p.rows_all;
         count_hits(state, out, [](int n) { return n > 0; });
     } else if (query == MaskQuery::first) {
         std::vector<std::optional<Pixel>> out(kPool);
@@ -1092,10 +1082,6 @@ void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query,
     // Pixels a reading-order scan of the shared rectangles examines, per ns of the timed loop
     // (the ceiling of a bit-packed scan is 64 pixels per AND of two words).
     state.counters["px/ns"] = pixels * static_cast<double>(passes) * static_cast<double>(state.iterations()) / ns;
-    // The work per query those rates stand for: pixels and rows scanned, and the shared width.
-    state.counters["px/query"] = pixels / static_cast<double>(kPool);
-    state.counters["rows/query"] = rows / static_cast<double>(kPool);
-    state.counters["width"] = p.width / static_cast<double>(kPool);
     c.report(state, false);
 }
 
