@@ -193,9 +193,8 @@ Placed placed(const PlacedMask& p) { return {p.mask, p.x, p.y}; }
 // which clears the columns past the shared rectangle: there P's bits are clear (past its
 // width) and O's are its own clear bits or the next row's (or the padding word after the last
 // row, see Mask::Mask), so nothing outside a mask's storage is read and every read bit that
-// counts lies inside both masks. Which mask plays P is chosen by selects, not a branch (it is
-// random from pair to pair), and the setup is a few dozen instructions: for small masks the
-// setup is most of a query's cost.
+// counts lies inside both masks. The setup is a few dozen instructions: for small masks it is
+// most of a query's cost.
 struct SharedWords {
     const u64* p;             // P's word 0 in the first shared row
     const u64* o;             // O's word holding the column under P's column 0 there
