@@ -474,6 +474,104 @@ TEST(MaskDifferential, EveryShiftAcrossWordBoundaries) {
     }
 }
 
+// Every kernel the CPU has (portable, bmi2, avx512: see mask.cpp) against reference:: on
+// masks up to 600 wide (rows of 1..10 words, past the 8 lanes of a vector) and 40 tall (row
+// blocks and their remainders), blobby or sparse, at every kind of offset: negative, huge,
+// rectangles sharing one column, one row or one pixel.
+TEST(MaskDifferential, EveryKernelEqualsReference) {
+    using detail::MaskKernel;
+    std::vector<MaskKernel> kernels{MaskKernel::portable};
+    for (const MaskKernel k : {MaskKernel::bmi2, MaskKernel::avx512})
+        if (static_cast<int>(k) <= static_cast<int>(detail::best_mask_kernel())) kernels.push_back(k);
+    Rng rng(0x6b65726eull);
+    const std::array<int, 12> special{1, 2, 63, 64, 65, 127, 128, 129, 511, 512, 513, 600};
+    int hits = 0;
+    for (int n = 0; n < 3000; ++n) {
+        const int wa = n % 3 == 0 ? special[rng.below(12)] : uniform_int(rng, 1, 600);
+        const int wb = n % 4 == 0 ? special[rng.below(12)] : uniform_int(rng, 1, 600);
+        const int ha = n % 7 == 0 ? 1 : uniform_int(rng, 1, 40);
+        const int hb = uniform_int(rng, 1, 40);
+        const Mask a = random_mask(rng, wa, ha, n % 2 == 0 ? 90 : 0);
+        const Mask b = random_mask(rng, wb, hb);
+        // Now and then far out, up to the ends of int (a mask there still fits in int).
+        const int far = n % 2 == 0 ? std::numeric_limits<int>::max() - 1300 : std::numeric_limits<int>::min() + 1300;
+        const int base = n % 97 == 0 ? far
+                         : n % 20 == 0 ? uniform_int(rng, -1000000000, 1000000000)
+                                       : uniform_int(rng, -300, 300);
+        const PlacedMask pb{&b, base, -base / 2};
+        PlacedMask pa{&a, pb.x + uniform_int(rng, -wa - 2, wb + 2), pb.y + uniform_int(rng, -ha - 2, hb + 2)};
+        switch (n % 10) {  // rectangles sharing only an edge column or row, or a corner pixel
+        case 0: pa.x = pb.x + wb - 1; break;
+        case 1: pa.x = pb.x - wa + 1; break;
+        case 2: pa.y = pb.y + hb - 1; break;
+        case 3: pa = {&a, pb.x - wa + 1, pb.y - ha + 1}; break;
+        default: break;
+        }
+        const int count = reference::count_overlap(pa, pb);
+        const std::optional<Pixel> first = reference::first_overlap(pa, pb);
+        for (const MaskKernel k : kernels) {
+            const int kk = static_cast<int>(k);
+            ASSERT_EQ(detail::count_overlap(pa, pb, k), count) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::count_overlap(pb, pa, k), count) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::overlaps(pa, pb, k), count > 0) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::overlaps(pb, pa, k), count > 0) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::first_overlap(pa, pb, k), first) << "case " << n << " kernel " << kk;
+            ASSERT_EQ(detail::first_overlap(pb, pa, k), first) << "case " << n << " kernel " << kk;
+        }
+        ASSERT_EQ(count_overlap(pa, pb), count);
+        ASSERT_EQ(first_overlap(pa, pb), first);
+        hits += count > 0;
+    }
+    EXPECT_GT(hits, 1000);
+    EXPECT_LT(hits, 2900);
+}
+
+// Masks of the same number of words per row (2, 3 or 4: the AVX-512 kernel packs 4 or 2 such
+// rows into a vector) and of 1 or 2 (8 rows a vector), every kernel against reference::.
+TEST(MaskDifferential, EqualStridesInEveryKernel) {
+    using detail::MaskKernel;
+    Rng rng(0x73747269ull);
+    const std::array<std::array<int, 2>, 5> strides{{{1, 64}, {65, 128}, {129, 192}, {193, 256}, {1, 128}}};
+    for (int n = 0; n < 2000; ++n) {
+        const auto& range = strides[static_cast<std::size_t>(n) % strides.size()];
+        const int wa = uniform_int(rng, range[0], range[1]);
+        const int wb = uniform_int(rng, range[0], range[1]);
+        const int ha = uniform_int(rng, 1, 30);
+        const int hb = uniform_int(rng, 1, 30);
+        const Mask a = random_mask(rng, wa, ha, n % 3 == 0 ? 0 : 97);
+        const Mask b = random_mask(rng, wb, hb, n % 3 == 0 ? 0 : 97);
+        const PlacedMask pb{&b, uniform_int(rng, -100, 100), uniform_int(rng, -100, 100)};
+        const PlacedMask pa{&a, pb.x + uniform_int(rng, -wa, wb), pb.y + uniform_int(rng, -ha, hb)};
+        const int count = reference::count_overlap(pa, pb);
+        const std::optional<Pixel> first = reference::first_overlap(pa, pb);
+        for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx512}) {
+            ASSERT_EQ(detail::count_overlap(pa, pb, k), count) << "case " << n;
+            ASSERT_EQ(detail::overlaps(pb, pa, k), count > 0) << "case " << n;
+            ASSERT_EQ(detail::first_overlap(pa, pb, k), first) << "case " << n;
+            ASSERT_EQ(detail::first_overlap(pb, pa, k), first) << "case " << n;
+        }
+    }
+}
+
+TEST(MaskDifferential, EmptyMasksMissInEveryKernel) {
+    using detail::MaskKernel;
+    const Mask full = rows_of({"###", "###"});
+    const Mask none;
+    const Mask clear(200, 30);
+    const Mask flat(100, 0);
+    for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx512}) {
+        for (const Mask* m : {&none, &clear, &flat}) {
+            const PlacedMask pa{&full, 1, 1}, pb{m, 0, 0};
+            EXPECT_FALSE(detail::overlaps(pa, pb, k));
+            EXPECT_FALSE(detail::overlaps(pb, pa, k));
+            EXPECT_EQ(detail::first_overlap(pb, pa, k), std::nullopt);
+            EXPECT_EQ(detail::count_overlap(pa, pb, k), 0);
+        }
+        EXPECT_FALSE(detail::overlaps(PlacedMask{}, PlacedMask{&full, 0, 0}, k));
+        EXPECT_EQ(detail::count_overlap(PlacedMask{&full, 0, 0}, PlacedMask{}, k), 0);
+    }
+}
+
 // ================================ Mask MTD ====================================================
 
 TEST(MaskMtd, HandComputed) {

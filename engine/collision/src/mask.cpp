@@ -14,6 +14,10 @@
 #include <type_traits>
 #include <variant>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
 #include "jostle/collision.h"
 #include "jostle/core/error.h"
 
@@ -45,7 +49,10 @@ Mask::Mask(int width, int height) {
     width_ = width;
     height_ = height;
     words_per_row_ = (width + 63) / 64;
-    bits_.assign(static_cast<std::size_t>(words_per_row_) * static_cast<std::size_t>(height), 0);
+    // One clear word past the last row: the mask queries read the word after a row's last one
+    // (two adjacent words joined by a shift) and mask off its bits, so a row's last word has a
+    // readable neighbour, the next row's first word or this one (8 bytes a mask).
+    bits_.assign(static_cast<std::size_t>(words_per_row_) * static_cast<std::size_t>(height) + 1, 0);
 }
 
 // An empty list gives a 0 x 0 mask and empty rows a 0-wide mask: both are valid and hit
@@ -179,64 +186,62 @@ struct Placed {
 Placed placed(const PlacedMask& p) { return {p.mask, p.x, p.y}; }
 
 // 09-30: AND the two masks over the intersection of their rectangles only, 64 pixels per
-// AND. Everything that does not change from row to row is worked out once per query here
-// (for small masks that per-query work is most of the cost): one mask, "A", is read
-// word-aligned over the words that hold shared columns; the 64 pixels of the other, "B",
-// under A's word i of a row are two adjacent B words joined by a shift that is the same for
-// every word of every row. Pixels outside B read as clear: past B's width its bits are clear,
-// and before B's column 0 (or past its last word) the word is read at a clamped index and
-// masked to 0, so the loops have no bounds tests and never read outside a row.
-// "A" and "B" here are the aligned and the shifted mask: share_words picks which query
-// argument plays which part. No default values: share_words sets every field (zeroing the
-// struct first cost as much as a row's work).
+// AND. The shared rectangle starts at column x0 = max(a.x, b.x), which is column 0 of one
+// of the two masks: that one, "P", is read word-aligned (shared chunk i of a row is its word
+// i); the 64 pixels of the other, "O", under it are two adjacent O words joined by a shift
+// that is the same for every chunk of every row. The last chunk of a row is ANDed with `tail`,
+// which clears the columns past the shared rectangle: there P's bits are clear (past its
+// width) and O's are its own clear bits or the next row's (or the padding word after the last
+// row, see Mask::Mask), so nothing outside a mask's storage is read and every read bit that
+// counts lies inside both masks. The setup is a few dozen instructions: for small masks it is
+// most of a query's cost.
 struct SharedWords {
-    const u64* a;         // A's first word holding a shared column, in the first shared row
-    const u64* b;         // word 0 of B's first shared row
-    int a_stride;         // A's words per row
-    int b_stride;         // B's words per row
-    int rows;             // shared rows, >= 1
-    int words;            // A words per shared row, >= 1
-    int q;                // the B word holding the pixel under bit 0 of A's first word; -1 if left of B
-    int shift;            // that pixel's bit in B word q
-    int first_lo;         // the low B word of A's word 0: word q clamped into the row, and
-    u64 first_lo_keep;    //   ~0, or 0 when q = -1 lies outside it
-    int last_hi;          // the high B word of A's last word: word q + words clamped, and
-    u64 last_hi_keep;     //   ~0, or 0 when it lies past the row
-    i64 x;                // world pixel of bit 0 of A's first word
-    i64 y;                // world row of the first shared row
+    const u64* p;             // P's word 0 in the first shared row
+    const u64* o;             // O's word holding the column under P's column 0 there
+    std::ptrdiff_t p_stride;  // P's words per row
+    std::ptrdiff_t o_stride;  // O's words per row
+    int shift;                // that column's bit in its O word
+    int rows;                 // shared rows, >= 1
+    int words;                // chunks per shared row, >= 1
+    u64 tail;                 // the valid bits of a row's last chunk
 };
 
+// The mask and position of a query's argument (PlacedMask) or of the MTD search's translated
+// mask (Placed, whose i64 position cannot overflow).
+inline const Mask* mask_of(const PlacedMask& p) { return p.mask; }
+inline const Mask* mask_of(const Placed& p) { return p.m; }
+
 // Sets s up for the pair; false when the rectangles share no pixel.
-[[gnu::always_inline]] inline bool share_words(const Placed& a, const Placed& b, SharedWords& s) {
-    const i64 x0 = std::max(a.x, b.x);
-    const i64 x1 = std::min(a.x + a.m->width(), b.x + b.m->width());
-    const i64 y0 = std::max(a.y, b.y);
-    const i64 y1 = std::min(a.y + a.m->height(), b.y + b.m->height());
+template <class P>
+[[gnu::always_inline]] inline bool share_words(const P& a, const P& b, SharedWords& s) {
+    const Mask* const am = mask_of(a);
+    const Mask* const bm = mask_of(b);
+    const auto ax = static_cast<i64>(a.x), ay = static_cast<i64>(a.y);
+    const auto bx = static_cast<i64>(b.x), by = static_cast<i64>(b.y);
+    const i64 x0 = std::max(ax, bx);
+    const i64 x1 = std::min(ax + am->width(), bx + bm->width());
+    const i64 y0 = std::max(ay, by);
+    const i64 y1 = std::min(ay + am->height(), by + bm->height());
     if (x0 >= x1 || y0 >= y1) return false;
-    // Read word-aligned whichever mask spans fewer words over the shared columns (the AND
-    // does not care which one is shifted): fewer words per row.
-    const i64 a_words = ((x1 - 1 - a.x) >> 6) - ((x0 - a.x) >> 6);
-    const i64 b_words = ((x1 - 1 - b.x) >> 6) - ((x0 - b.x) >> 6);
-    const Placed& p = b_words < a_words ? b : a;  // read aligned
-    const Placed& o = b_words < a_words ? a : b;  // shifted
-    const int k0 = static_cast<int>((x0 - p.x) >> 6);
-    // The shared columns lie inside both masks, so these differences are small.
-    const int d = static_cast<int>(p.x + 64 * k0 - o.x);  // o's column under bit 0 of word k0, > -64
-    const int wo = o.m->words_per_row();
-    s.a_stride = p.m->words_per_row();
-    s.b_stride = wo;
-    s.a = p.m->row(static_cast<int>(y0 - p.y)) + k0;
-    s.b = o.m->row(static_cast<int>(y0 - o.y));
+    // P: the mask whose column 0 is x0 (A when a.x >= b.x). GCC makes this a branch; selects
+    // done with masks measured slower (they put the choice on the chain of dependent loads).
+    const bool a_aligned = ax >= bx;
+    const Mask* const pm = a_aligned ? am : bm;
+    const Mask* const om = a_aligned ? bm : am;
+    const i64 py = a_aligned ? ay : by;
+    const i64 ox = a_aligned ? bx : ax;
+    const i64 oy = a_aligned ? by : ay;
+    // The shared rectangle lies inside both masks, so these differences are small.
+    const int c = static_cast<int>(x0 - ox);  // O's column under P's column 0, >= 0
+    const int width = static_cast<int>(x1 - x0);
+    s.p_stride = pm->words_per_row();
+    s.o_stride = om->words_per_row();
+    s.p = pm->row(static_cast<int>(y0 - py));
+    s.o = om->row(static_cast<int>(y0 - oy)) + (c >> 6);
+    s.shift = c & 63;
     s.rows = static_cast<int>(y1 - y0);
-    s.words = static_cast<int>(std::min(a_words, b_words)) + 1;
-    s.q = d >> 6;  // floor: -1 when word k0 starts left of o
-    s.shift = d & 63;
-    s.first_lo = std::max(s.q, 0);
-    s.first_lo_keep = s.q >= 0 ? ~u64{0} : 0;
-    s.last_hi = std::min(s.q + s.words, wo - 1);
-    s.last_hi_keep = s.q + s.words < wo ? ~u64{0} : 0;
-    s.x = p.x + 64 * k0;
-    s.y = y0;
+    s.words = (width + 63) >> 6;
+    s.tail = ~u64{0} >> ((64 - (width & 63)) & 63);  // width % 64 low bits; all 64 when 0
     return true;
 }
 
@@ -244,35 +249,44 @@ struct SharedWords {
 // rather than hi << (64 - shift): a shift by 64 is undefined, and for shift 0 this gives 0.
 inline u64 join(u64 lo, u64 hi, int shift) { return (lo >> shift) | ((hi << 1) << (63 - shift)); }
 
-// One shared row: f(i, word i of A AND the B pixels under it) for i = 0..words-1, left to
-// right, until f returns true. ra and rb are offsets of the row in s.a and s.b. kOneWord: the
-// caller knows words == 1 (always so for masks up to 64 wide), which drops the loop. Always
-// inlined, so that a popcount in f compiles for the kernel's target (count_shared).
-template <bool kOneWord, class F>
-[[gnu::always_inline]] inline bool for_row_words(const SharedWords& s, std::ptrdiff_t ra, std::ptrdiff_t rb, F&& f) {
-    const u64* a = s.a + ra;
-    const u64* b = s.b + rb;
-    u64 lo = b[s.first_lo] & s.first_lo_keep;
-    int i = 0;
-    if constexpr (!kOneWord) {
-        for (; i + 1 < s.words; ++i) {  // inner words: both B words lie inside the row
-            const u64 hi = b[s.q + i + 1];
-            if (f(i, a[i] & join(lo, hi, s.shift))) return true;
-            lo = hi;
-        }
-    }
-    return f(i, a[i] & join(lo, b[s.last_hi] & s.last_hi_keep, s.shift));
+// Chunk i of shared row r (P's word AND the O pixels under it), without the tail.
+[[gnu::always_inline]] inline u64 chunk(const SharedWords& s, int r, int i) {
+    const u64* p = s.p + r * s.p_stride;
+    const u64* o = s.o + r * s.o_stride;
+    return p[i] & join(o[i], o[i + 1], s.shift);
 }
 
-// The OR of a row's shared words: non-zero when the row has a shared pixel.
+// Row r's only chunk (s.words == 1: always so for masks up to 64 wide), tail applied.
+[[gnu::always_inline]] inline u64 only_chunk(const SharedWords& s, int r) { return chunk(s, r, 0) & s.tail; }
+
+// One shared row: f(i, chunk i) for i = 0..words-1, left to right, until f returns true.
+template <class F>
+[[gnu::always_inline]] inline bool for_row_words(const SharedWords& s, int r, F&& f) {
+    const u64* p = s.p + r * s.p_stride;
+    const u64* o = s.o + r * s.o_stride;
+    const int last = s.words - 1;
+    u64 lo = o[0];
+    for (int i = 0; i < last; ++i) {
+        const u64 hi = o[i + 1];
+        if (f(i, p[i] & join(lo, hi, s.shift))) return true;
+        lo = hi;
+    }
+    return f(last, p[last] & join(lo, o[last + 1], s.shift) & s.tail);
+}
+
+// The OR of a row's shared chunks: non-zero when the row has a shared pixel.
 template <bool kOneWord>
-[[gnu::always_inline]] inline u64 row_any(const SharedWords& s, std::ptrdiff_t ra, std::ptrdiff_t rb) {
-    u64 any = 0;
-    for_row_words<kOneWord>(s, ra, rb, [&](int, u64 w) {
-        any |= w;
-        return false;
-    });
-    return any;
+[[gnu::always_inline]] inline u64 row_any(const SharedWords& s, int r) {
+    if constexpr (kOneWord) {
+        return only_chunk(s, r);
+    } else {
+        u64 any = 0;
+        for_row_words(s, r, [&](int, u64 w) {
+            any |= w;
+            return false;
+        });
+        return any;
+    }
 }
 
 // Rows are tested kBlock at a time with one branch per block, then one at a time: where the
@@ -284,100 +298,465 @@ constexpr int kBlock = 4;
 template <bool kOneWord>
 [[gnu::always_inline]] inline unsigned block_flags(const SharedWords& s, int r0) {
     unsigned flags = 0;
-    for (int k = 0; k < kBlock; ++k)
-        flags |= static_cast<unsigned>(row_any<kOneWord>(s, std::ptrdiff_t{r0 + k} * s.a_stride,
-                                                         std::ptrdiff_t{r0 + k} * s.b_stride) != 0)
-                 << k;
+    for (int k = 0; k < kBlock; ++k) flags |= static_cast<unsigned>(row_any<kOneWord>(s, r0 + k) != 0) << k;
     return flags;
 }
 
-// The first row at or after r0 with a shared pixel, or s.rows.
+// The first row at or after r with a shared pixel, or s.rows.
 template <bool kOneWord>
 [[gnu::always_inline]] inline int first_row_from(const SharedWords& s, int r) {
     for (; r + kBlock <= s.rows; r += kBlock)
         if (const unsigned flags = block_flags<kOneWord>(s, r); flags != 0) return r + std::countr_zero(flags);
     for (; r < s.rows; ++r)
-        if (row_any<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride) != 0) return r;
+        if (row_any<kOneWord>(s, r) != 0) return r;
     return s.rows;
 }
 
 // Yes/no needs no row number: the rows of a block are simply ORed.
 template <bool kOneWord>
-bool any_shared_in(const SharedWords& s) {
+[[gnu::always_inline]] inline bool any_shared_in(const SharedWords& s) {
     int r = 0;
     for (; r + kBlock <= s.rows; r += kBlock) {
         u64 any = 0;
-        for (int k = 0; k < kBlock; ++k)
-            any |= row_any<kOneWord>(s, std::ptrdiff_t{r + k} * s.a_stride, std::ptrdiff_t{r + k} * s.b_stride);
+        for (int k = 0; k < kBlock; ++k) any |= row_any<kOneWord>(s, r + k);
         if (any != 0) return true;
     }
     for (; r < s.rows; ++r)
-        if (row_any<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride) != 0) return true;
+        if (row_any<kOneWord>(s, r) != 0) return true;
     return false;
 }
 
-bool any_shared(const SharedWords& s) { return s.words == 1 ? any_shared_in<true>(s) : any_shared_in<false>(s); }
+[[gnu::always_inline]] inline bool any_shared(const SharedWords& s) {
+    return s.words == 1 ? any_shared_in<true>(s) : any_shared_in<false>(s);
+}
 
-struct WorldPixel {
-    i64 x = 0;
-    i64 y = 0;
+// A shared pixel as its column and row in the shared rectangle (world x0 + col, y0 + row);
+// row -1: none. Eight bytes, so the kernels return it in a register.
+struct Offset {
+    int col;
+    int row;
+    bool found() const { return row >= 0; }
 };
+constexpr Offset kNone{0, -1};
 
 // The first shared pixel of row r, known to have one.
 template <bool kOneWord>
-WorldPixel first_in_row(const SharedWords& s, int r) {
-    WorldPixel out{0, s.y + r};
-    for_row_words<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride, [&](int i, u64 w) {
-        out.x = s.x + 64 * i + std::countr_zero(w);
-        return w != 0;
-    });
+[[gnu::always_inline]] inline Offset first_in_row(const SharedWords& s, int r) {
+    Offset out{0, r};
+    if constexpr (kOneWord) {
+        out.col = std::countr_zero(only_chunk(s, r));
+    } else {
+        for_row_words(s, r, [&](int i, u64 w) {
+            out.col = 64 * i + std::countr_zero(w);
+            return w != 0;
+        });
+    }
     return out;
 }
 
-// The first shared pixel, rows top to bottom (bottom to top when `upward`, for the MTD
-// search; not worth blocks there), left to right.
-std::optional<WorldPixel> first_shared(const SharedWords& s, bool upward) {
-    if (upward) {
-        for (int r = s.rows - 1; r >= 0; --r)
-            if (row_any<false>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride) != 0)
-                return first_in_row<false>(s, r);
-        return std::nullopt;
-    }
-    if (s.words == 1) {
-        const int r = first_row_from<true>(s, 0);
-        return r < s.rows ? std::optional(first_in_row<true>(s, r)) : std::nullopt;
-    }
-    const int r = first_row_from<false>(s, 0);
-    return r < s.rows ? std::optional(first_in_row<false>(s, r)) : std::nullopt;
+// The first shared pixel of the lowest row that has one (the MTD search's witness when it
+// scans upward; not worth blocks there).
+Offset last_row_first_shared(const SharedWords& s) {
+    for (int r = s.rows - 1; r >= 0; --r)
+        if (row_any<false>(s, r) != 0) return first_in_row<false>(s, r);
+    return kNone;
 }
 
-// Counting needs a popcount per word. Baseline x86-64 has no POPCNT instruction, so
-// std::popcount there is a call into libgcc (__popcountdi2); the flags that would enable it
-// (-march=...) apply to a whole file and would let the compiler change floating-point code
-// too (FMA), which the determinism rule forbids. So the integer-only kernel is compiled
-// twice: for the popcnt target, chosen at run time when the CPU has it, and as is.
-template <bool kOneWord>
+// The first shared pixel, rows top to bottom, left to right.
+[[gnu::always_inline]] inline Offset first_shared(const SharedWords& s) {
+    if (s.words == 1) {
+        const int r = first_row_from<true>(s, 0);
+        return r < s.rows ? first_in_row<true>(s, r) : kNone;
+    }
+    const int r = first_row_from<false>(s, 0);
+    return r < s.rows ? first_in_row<false>(s, r) : kNone;
+}
+
 [[gnu::always_inline]] inline int count_in_rows(const SharedWords& s) {
     int n = 0;
+    if (s.words == 1) {
+        for (int r = 0; r < s.rows; ++r) n += std::popcount(only_chunk(s, r));
+        return n;
+    }
     for (int r = 0; r < s.rows; ++r)
-        for_row_words<kOneWord>(s, std::ptrdiff_t{r} * s.a_stride, std::ptrdiff_t{r} * s.b_stride, [&](int, u64 w) {
+        for_row_words(s, r, [&](int, u64 w) {
             n += std::popcount(w);
             return false;
         });
     return n;
 }
 
+// ---------------------------------------------------------------------------------------
+// The kernels by instruction set, chosen at run time
+// ---------------------------------------------------------------------------------------
+// The kernels above are integer-only and always inlined, so each copy below compiles them for
+// its own [[gnu::target]]. Whole-file flags (-march=...) would let the compiler change
+// floating-point code too (FMA), which the determinism rule forbids; a target attribute on an
+// integer-only function cannot. Every copy gives the same answers (tests run each one the CPU
+// has against reference::):
+//   portable  baseline x86-64 (or any other machine): std::popcount is a libgcc call there
+//   bmi2      POPCNT, TZCNT and BMI2's shifts by any register (the join's two shifts need no
+//             shuffling through CL)
+//   avx512    bmi2, and rows of 2..8 chunks as one vector each: VPSHRDVQ joins 8 word pairs in
+//             one instruction (VBMI2), VPOPCNTQ counts them. Rows of one chunk stay scalar (a
+//             gather of 8 such rows measured slower), and the setup stays in bmi2 code: the
+//             vector code's frame costs more than a small query's work.
+// Each kernel is a whole query, from the setup to the answer, so that the shared words stay in
+// registers: a query on small masks is mostly setup.
+
+using MaskKernel = detail::MaskKernel;
+
 #if defined(__x86_64__) && defined(__GNUC__)
-[[gnu::target("popcnt")]] int count_shared_popcnt(const SharedWords& s) {
-    return s.words == 1 ? count_in_rows<true>(s) : count_in_rows<false>(s);
+#define JOSTLE_MASK_X86_KERNELS 1
+#define JOSTLE_BMI2 "popcnt,bmi,bmi2"
+#define JOSTLE_AVX512 "popcnt,bmi,bmi2,avx2,avx512f,avx512vl,avx512bw,avx512vpopcntdq,avx512vbmi2"
+
+// A shared row of 2..8 chunks as one vector: lane i is chunk i (lanes past the row are 0).
+struct RowVectors {
+    __mmask8 lanes;  // the row's chunks
+    __m512i tail;    // ~0 in every lane but the last chunk's, which holds s.tail
+    __m512i shift;   // s.shift in every lane
+};
+
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline RowVectors row_vectors(const SharedWords& s) {
+    RowVectors v;
+    v.lanes = static_cast<__mmask8>((1u << s.words) - 1u);
+    v.tail = _mm512_mask_set1_epi64(_mm512_set1_epi64(-1), static_cast<__mmask8>(1u << (s.words - 1)),
+                                    static_cast<long long>(s.tail));
+    v.shift = _mm512_set1_epi64(s.shift);
+    return v;
+}
+
+// Masked loads read only the row's words (a masked-off lane is never read); lane i of `hi` is
+// O's word i + 1, the readable neighbour of the last chunk (see SharedWords).
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i row_vector(const SharedWords& s, const RowVectors& v,
+                                                                              int r) {
+    const u64* p = s.p + r * s.p_stride;
+    const u64* o = s.o + r * s.o_stride;
+    const __m512i pw = _mm512_maskz_loadu_epi64(v.lanes, p);
+    const __m512i lo = _mm512_maskz_loadu_epi64(v.lanes, o);
+    const __m512i hi = _mm512_maskz_loadu_epi64(v.lanes, o + 1);
+    return _mm512_and_si512(_mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, v.shift)), v.tail);
+}
+
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline bool nonzero(__m512i w) {
+    return _mm512_test_epi64_mask(w, w) != 0;
+}
+
+// The sum of the 8 lanes (stored and added: _mm512_reduce_add_epi64's GCC 12 header warns).
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int lane_sum(__m512i v) {
+    std::array<long long, 8> lanes{};
+    _mm512_storeu_si512(lanes.data(), v);
+    long long n = 0;
+    for (const long long lane : lanes) n += lane;
+    return static_cast<int>(n);
+}
+
+// Rows of one chunk (shared width <= 64) from masks of 1 or 2 words per row, 8 rows per vector:
+// lane k is row r + k's chunk, tail applied, 0 past the last row. A stride-1 mask's 8 words
+// are one load; a stride-2 mask's 16 words are two, split into even and odd lanes by one
+// permute each. O's word after a row's chunk word is the next word in memory at both strides
+// (the padding word after the last row included), so the same loads give it. Masked loads
+// read only the lanes they keep: never past rows r .. s.rows - 1 (and their following word).
+template <int kPStride, int kOStride>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i eight_rows(const SharedWords& s, int r,
+                                                                              __m512i shift, __m512i tail) {
+    const int left = std::min(s.rows - r, 8);
+    const unsigned words = (1u << left) - 1u;                   // lane k: row r + k exists
+    const unsigned pairs = (1u << (2 * left)) - 1u;             // 2 lanes a row, 16 at most
+    const __m512i even = _mm512_set_epi64(14, 12, 10, 8, 6, 4, 2, 0);
+    const __m512i odd = _mm512_set_epi64(15, 13, 11, 9, 7, 5, 3, 1);
+    __m512i pw;
+    if constexpr (kPStride == 1) {
+        pw = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(words), s.p + r);
+    } else {
+        const u64* p = s.p + 2 * r;
+        const __m512i v0 = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(pairs), p);
+        const __m512i v1 = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(pairs >> 8), p + 8);
+        pw = _mm512_permutex2var_epi64(v0, even, v1);
+    }
+    __m512i lo;
+    __m512i hi;
+    if constexpr (kOStride == 1) {
+        lo = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(words), s.o + r);
+        hi = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(words), s.o + r + 1);
+    } else {
+        const u64* o = s.o + 2 * r;
+        const __m512i v0 = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(pairs), o);
+        const __m512i v1 = _mm512_maskz_loadu_epi64(static_cast<__mmask8>(pairs >> 8), o + 8);
+        lo = _mm512_permutex2var_epi64(v0, even, v1);
+        hi = _mm512_permutex2var_epi64(v0, odd, v1);
+    }
+    return _mm512_and_si512(_mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, shift)), tail);
+}
+
+// 4 * P's stride + O's stride when both are 1 or 2 words (5, 6, 9, 10), else 0.
+inline int stride_pair(const SharedWords& s) {
+    return s.p_stride <= 2 && s.o_stride <= 2 ? static_cast<int>(4 * s.p_stride + s.o_stride) : 0;
+}
+
+// The first row with a shared pixel, 8 rows a test, or s.rows; rows of one chunk, strides 1-2.
+template <int kP, int kO>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int first_row_eight(const SharedWords& s) {
+    const __m512i shift = _mm512_set1_epi64(s.shift);
+    const __m512i tail = _mm512_set1_epi64(static_cast<long long>(s.tail));
+    for (int r = 0; r < s.rows; r += 8) {
+        const __m512i w = eight_rows<kP, kO>(s, r, shift, tail);
+        if (const unsigned hit = _mm512_test_epi64_mask(w, w); hit != 0) return r + std::countr_zero(hit);
+    }
+    return s.rows;
+}
+
+template <int kP, int kO>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int count_eight(const SharedWords& s) {
+    const __m512i shift = _mm512_set1_epi64(s.shift);
+    const __m512i tail = _mm512_set1_epi64(static_cast<long long>(s.tail));
+    __m512i sum = _mm512_setzero_si512();
+    for (int r = 0; r < s.rows; r += 8) sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(eight_rows<kP, kO>(s, r, shift, tail)));
+    return lane_sum(sum);
+}
+
+// Rows of two masks with the same stride of kS = 2 or 4 words (up to 128 or 256 wide), 8 / kS
+// rows per vector: such rows lie kS words apart in both masks, so one load of 8 words holds
+// 8 / kS rows, and lane i * kS + c is chunk c of row r + i (lanes past a row's chunks, or past
+// the last row, are masked off and never read). Lanes run in reading order.
+struct PackedRows {
+    unsigned lanes;  // the chunks of 8 / kS rows
+    __m512i tail;    // s.tail in each row's last chunk, ~0 elsewhere
+    __m512i shift;
+};
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline PackedRows packed_rows(const SharedWords& s) {
+    const unsigned row = (1u << s.words) - 1u;  // s.words <= kS: the shared width fits in both
+    unsigned lanes = 0;
+    unsigned last = 0;
+    for (int i = 0; i < 8 / kS; ++i) {
+        lanes |= row << (i * kS);
+        last |= 1u << (i * kS + s.words - 1);
+    }
+    return {lanes, _mm512_mask_set1_epi64(_mm512_set1_epi64(-1), static_cast<__mmask8>(last), static_cast<long long>(s.tail)),
+            _mm512_set1_epi64(s.shift)};
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i packed_vector(const SharedWords& s,
+                                                                                 const PackedRows& v, int r) {
+    const int left = s.rows - r;
+    const unsigned rows = left >= 8 / kS ? 0xffu : (1u << (left * kS)) - 1u;
+    const auto k = static_cast<__mmask8>(v.lanes & rows);
+    const u64* p = s.p + r * kS;
+    const u64* o = s.o + r * kS;
+    const __m512i pw = _mm512_maskz_loadu_epi64(k, p);
+    const __m512i lo = _mm512_maskz_loadu_epi64(k, o);
+    const __m512i hi = _mm512_maskz_loadu_epi64(k, o + 1);
+    return _mm512_and_si512(_mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, v.shift)), v.tail);
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int count_packed(const SharedWords& s) {
+    const PackedRows v = packed_rows<kS>(s);
+    __m512i sum = _mm512_setzero_si512();
+    for (int r = 0; r < s.rows; r += 8 / kS) sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(packed_vector<kS>(s, v, r)));
+    return lane_sum(sum);
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline Offset first_packed(const SharedWords& s) {
+    const PackedRows v = packed_rows<kS>(s);
+    for (int r = 0; r < s.rows; r += 8 / kS) {
+        const __m512i w = packed_vector<kS>(s, v, r);
+        if (const unsigned hit = _mm512_test_epi64_mask(w, w); hit != 0) {
+            const int lane = std::countr_zero(hit);
+            std::array<u64, 8> words;
+            _mm512_storeu_si512(words.data(), w);
+            return Offset{64 * (lane % kS) + std::countr_zero(words[static_cast<std::size_t>(lane)]), r + lane / kS};
+        }
+    }
+    return kNone;
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline bool any_packed(const SharedWords& s) {
+    const PackedRows v = packed_rows<kS>(s);
+    for (int r = 0; r < s.rows; r += 8 / kS)
+        if (nonzero(packed_vector<kS>(s, v, r))) return true;
+    return false;
+}
+
+// 2 or 4 when both masks' rows are that many words (rows of 2..4 chunks pack into vectors).
+inline int packed_stride(const SharedWords& s) {
+    return s.words > 1 && s.p_stride == s.o_stride && (s.p_stride == 2 || s.p_stride == 4) ? static_cast<int>(s.p_stride)
+                                                                                             : 0;
+}
+
+// The first row (from 0) with a shared pixel, or s.rows; s.words in 2..8.
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int first_row_avx512(const SharedWords& s) {
+    const RowVectors v = row_vectors(s);
+    int r = 0;
+    for (; r + kBlock <= s.rows; r += kBlock) {
+        unsigned flags = 0;
+        for (int k = 0; k < kBlock; ++k) flags |= static_cast<unsigned>(nonzero(row_vector(s, v, r + k))) << k;
+        if (flags != 0) return r + std::countr_zero(flags);
+    }
+    for (; r < s.rows; ++r)
+        if (nonzero(row_vector(s, v, r))) return r;
+    return s.rows;
+}
+
+// Yes/no: the rows of a block are ORed; s.words in 2..8.
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline bool any_avx512(const SharedWords& s) {
+    const RowVectors v = row_vectors(s);
+    int r = 0;
+    for (; r + kBlock <= s.rows; r += kBlock) {
+        __m512i any = row_vector(s, v, r);
+        for (int k = 1; k < kBlock; ++k) any = _mm512_or_si512(any, row_vector(s, v, r + k));
+        if (nonzero(any)) return true;
+    }
+    for (; r < s.rows; ++r)
+        if (nonzero(row_vector(s, v, r))) return true;
+    return false;
+}
+
+// s.words in 2..8.
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int count_avx512(const SharedWords& s) {
+    const RowVectors v = row_vectors(s);
+    __m512i sum = _mm512_setzero_si512();
+    for (int r = 0; r < s.rows; ++r) sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(row_vector(s, v, r)));
+    return lane_sum(sum);
 }
 #endif
 
-int count_shared(const SharedWords& s) {
-#if defined(__x86_64__) && defined(__GNUC__)
-    if (__builtin_cpu_supports("popcnt")) return count_shared_popcnt(s);
+// The queries, compiled into each kernel below.
+template <class P>
+[[gnu::always_inline]] inline bool any_query(const P& a, const P& b) {
+    SharedWords s;
+    return share_words(a, b, s) && any_shared(s);
+}
+
+template <class P>
+[[gnu::always_inline]] inline Offset first_query(const P& a, const P& b) {
+    SharedWords s;
+    return share_words(a, b, s) ? first_shared(s) : kNone;
+}
+
+template <class P>
+[[gnu::always_inline]] inline int count_query(const P& a, const P& b) {
+    SharedWords s;
+    return share_words(a, b, s) ? count_in_rows(s) : 0;
+}
+
+bool any_portable(const PlacedMask& a, const PlacedMask& b) { return any_query(a, b); }
+Offset first_portable(const PlacedMask& a, const PlacedMask& b) { return first_query(a, b); }
+int count_portable(const PlacedMask& a, const PlacedMask& b) { return count_query(a, b); }
+
+#ifdef JOSTLE_MASK_X86_KERNELS
+[[gnu::target(JOSTLE_BMI2)]] bool any_bmi2(const PlacedMask& a, const PlacedMask& b) { return any_query(a, b); }
+[[gnu::target(JOSTLE_BMI2)]] Offset first_bmi2(const PlacedMask& a, const PlacedMask& b) {
+    return first_query(a, b);
+}
+[[gnu::target(JOSTLE_BMI2)]] int count_bmi2(const PlacedMask& a, const PlacedMask& b) { return count_query(a, b); }
+
+// The avx512 kernel: 8 rows a vector for rows of one chunk from masks of 1 or 2 words per
+// row; 4 or 2 rows a vector for rows of 2..4 chunks from two masks both 2 or 4 words wide; a
+// vector a row for the other rows of 2..8 chunks; the bmi2 code for the rest.
+[[gnu::target(JOSTLE_AVX512)]] bool any_vector(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    if (!share_words(a, b, s)) return false;
+    if (s.words == 1) {
+        switch (stride_pair(s)) {
+        case 5: return first_row_eight<1, 1>(s) < s.rows;
+        case 6: return first_row_eight<1, 2>(s) < s.rows;
+        case 9: return first_row_eight<2, 1>(s) < s.rows;
+        case 10: return first_row_eight<2, 2>(s) < s.rows;
+        default: return any_shared(s);
+        }
+    }
+    if (const int packed = packed_stride(s); packed != 0) return packed == 2 ? any_packed<2>(s) : any_packed<4>(s);
+    return s.words <= 8 ? any_avx512(s) : any_shared(s);
+}
+[[gnu::target(JOSTLE_AVX512)]] Offset first_vector(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    if (!share_words(a, b, s)) return kNone;
+    int r = 0;
+    if (s.words == 1) {
+        switch (stride_pair(s)) {
+        case 5: r = first_row_eight<1, 1>(s); break;
+        case 6: r = first_row_eight<1, 2>(s); break;
+        case 9: r = first_row_eight<2, 1>(s); break;
+        case 10: r = first_row_eight<2, 2>(s); break;
+        default: return first_shared(s);
+        }
+        return r < s.rows ? first_in_row<true>(s, r) : kNone;
+    }
+    if (const int packed = packed_stride(s); packed != 0) return packed == 2 ? first_packed<2>(s) : first_packed<4>(s);
+    if (s.words > 8) return first_shared(s);
+    r = first_row_avx512(s);
+    return r < s.rows ? first_in_row<false>(s, r) : kNone;
+}
+[[gnu::target(JOSTLE_AVX512)]] int count_vector(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    if (!share_words(a, b, s)) return 0;
+    if (s.words == 1) {
+        switch (stride_pair(s)) {
+        case 5: return count_eight<1, 1>(s);
+        case 6: return count_eight<1, 2>(s);
+        case 9: return count_eight<2, 1>(s);
+        case 10: return count_eight<2, 2>(s);
+        default: return count_in_rows(s);
+        }
+    }
+    if (const int packed = packed_stride(s); packed != 0) return packed == 2 ? count_packed<2>(s) : count_packed<4>(s);
+    return s.words <= 8 ? count_avx512(s) : count_in_rows(s);
+}
+
+bool cpu_has(MaskKernel k) {
+    switch (k) {
+    case MaskKernel::portable: return true;
+    case MaskKernel::bmi2:
+        return __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
+    case MaskKernel::avx512:
+        return cpu_has(MaskKernel::bmi2) && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") &&
+               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+               __builtin_cpu_supports("avx512vpopcntdq") && __builtin_cpu_supports("avx512vbmi2");
+    }
+    return false;
+}
+#else
+bool cpu_has(MaskKernel k) { return k == MaskKernel::portable; }
 #endif
-    return s.words == 1 ? count_in_rows<true>(s) : count_in_rows<false>(s);
+
+// The kernel asked for, or the best one the CPU has below it.
+MaskKernel usable_kernel(MaskKernel k) {
+    while (k != MaskKernel::portable && !cpu_has(k)) k = static_cast<MaskKernel>(static_cast<int>(k) - 1);
+    return k;
+}
+
+bool any_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+#ifdef JOSTLE_MASK_X86_KERNELS
+    if (k == MaskKernel::avx512) return any_vector(a, b);
+    if (k == MaskKernel::bmi2) return any_bmi2(a, b);
+#endif
+    (void)k;
+    return any_portable(a, b);
+}
+
+Offset first_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+#ifdef JOSTLE_MASK_X86_KERNELS
+    if (k == MaskKernel::avx512) return first_vector(a, b);
+    if (k == MaskKernel::bmi2) return first_bmi2(a, b);
+#endif
+    (void)k;
+    return first_portable(a, b);
+}
+
+int count_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+#ifdef JOSTLE_MASK_X86_KERNELS
+    if (k == MaskKernel::avx512) return count_vector(a, b);
+    if (k == MaskKernel::bmi2) return count_bmi2(a, b);
+#endif
+    (void)k;
+    return count_portable(a, b);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -498,13 +877,17 @@ struct MaskPairProblem {
         if (ax + box_a.x0 > b.x + box_b.x1 || ax + box_a.x1 < b.x + box_b.x0 ||
             ay + box_a.y0 > b.y + box_b.y1 || ay + box_a.y1 < b.y + box_b.y0)
             return false;
-        SharedWords s;
-        if (!share_words(Placed{a.m, ax, ay}, b, s)) return false;
-        const auto witness = first_shared(s, dir < 0);
-        if (!witness) return false;
-                // A's pixel on (wx, wy) stays on B's pixels while B's column runs on in the scan direction.
-        const int bx = static_cast<int>(witness->x - b.x);
-        const int by = static_cast<int>(witness->y - b.y);
+        const Placed moved{a.m, ax, ay};
+        Offset at = kNone;
+        if (dir > 0) {
+            at = first_query(moved, b);
+        } else if (SharedWords s; share_words(moved, b, s)) {
+            at = last_row_first_shared(s);
+        }
+        if (!at.found()) return false;
+        // A's pixel there stays on B's pixels while B's column runs on in the scan direction.
+        const int bx = static_cast<int>(std::max(ax, b.x) + at.col - b.x);
+        const int by = static_cast<int>(std::max(ay, b.y) + at.row - b.y);
         int run = 1;
         while (b.m->get(bx, by + dir * run)) ++run;
         jump = run;
@@ -993,25 +1376,50 @@ Manifold collide_region(const PlacedMask& a, const std::optional<R>& r) {
 // Mask vs mask (bit-packed)
 // ---------------------------------------------------------------------------------------
 
+namespace {
+
+// The best kernel this CPU has, found once (a constant of the machine, not state).
+MaskKernel best_kernel() {
+    static const MaskKernel best = usable_kernel(MaskKernel::avx512);
+    return best;
+}
+
 // A 0-wide or 0-high mask shares no pixel: share_words finds that without a test of its own.
-bool overlaps(const PlacedMask& a, const PlacedMask& b) {
-    SharedWords s;
-    return a.mask != nullptr && b.mask != nullptr && share_words(placed(a), placed(b), s) && any_shared(s);
+bool overlaps_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    return a.mask != nullptr && b.mask != nullptr && any_with(a, b, k);
 }
 
+std::optional<Pixel> first_overlap_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    if (a.mask == nullptr || b.mask == nullptr) return std::nullopt;
+    const Offset at = first_with(a, b, k);
+    if (!at.found()) return std::nullopt;
+    // The shared rectangle's corner is (max x, max y); the pixel is inside both masks.
+    return Pixel{static_cast<int>(std::max<i64>(a.x, b.x) + at.col), static_cast<int>(std::max<i64>(a.y, b.y) + at.row)};
+}
+
+int count_overlap_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    if (a.mask == nullptr || b.mask == nullptr) return 0;
+    return count_with(a, b, k);
+}
+
+}  // namespace
+
+bool overlaps(const PlacedMask& a, const PlacedMask& b) { return overlaps_with(a, b, best_kernel()); }
 std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b) {
-    SharedWords s;
-    if (a.mask == nullptr || b.mask == nullptr || !share_words(placed(a), placed(b), s)) return std::nullopt;
-    const auto p = first_shared(s, false);
-    if (!p) return std::nullopt;
-    return Pixel{static_cast<int>(p->x), static_cast<int>(p->y)};
+    return first_overlap_with(a, b, best_kernel());
 }
+int count_overlap(const PlacedMask& a, const PlacedMask& b) { return count_overlap_with(a, b, best_kernel()); }
 
-int count_overlap(const PlacedMask& a, const PlacedMask& b) {
-    SharedWords s;
-    if (a.mask == nullptr || b.mask == nullptr || !share_words(placed(a), placed(b), s)) return 0;
-    return count_shared(s);
+namespace detail {
+MaskKernel best_mask_kernel() { return best_kernel(); }
+bool overlaps(const PlacedMask& a, const PlacedMask& b, MaskKernel k) { return overlaps_with(a, b, usable_kernel(k)); }
+std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    return first_overlap_with(a, b, usable_kernel(k));
 }
+int count_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    return count_overlap_with(a, b, usable_kernel(k));
+}
+}  // namespace detail
 
 Manifold collide(const PlacedMask& a, const PlacedMask& b) {
     if (!overlaps(a, b)) return {};
