@@ -144,8 +144,9 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
             const std::uint64_t high = std::uint64_t{e.item} << bits;
             for (std::uint32_t q = p + 1; q < end; ++q) {
                 const Entry& f = entries_[q];
-                const bool here = (f.x == e.x) & (f.y == e.y) & (std::max(e.x0, f.x0) == e.x) &
-                                  (std::max(e.y0, f.y0) == e.y);
+                const std::int32_t corner_x = std::max(e.x0, f.x0);
+                const std::int32_t corner_y = std::max(e.y0, f.y0);
+                const bool here = (f.x == e.x) & (f.y == e.y) & (corner_x == e.x) & (corner_y == e.y);
                 keys_[count] = high | f.item;
                 count += static_cast<std::size_t>(here & (e.active | f.active) & touch(e.box, f.box));
             }
