@@ -58,8 +58,9 @@
 //                step's motion, so a body that friction stops does not slide on a step.
 //                position: relaxation passes; each recomputes every contact's manifold and
 //                pushes along the MTD: a dynamic body against a static or kinematic one
-//                moves by the whole MTD; two dynamic bodies split it by inverse mass. The
-//                passes stop early once no contact is deeper than `slop`; the last passes
+//                moves by the whole MTD; two dynamic bodies split it by inverse mass. A
+//                contact no deeper than slop / 2 counts as settled and is not pushed. The
+//                passes stop early once no contact is deeper than that; the last passes
 //                order contacts from the ground up and let the body nearer an immovable one
 //                stand still (shock propagation), so resting stacks end within `slop`.
 //   sweeps       bullets in id order: segment cast from the old to the new position against
