@@ -103,22 +103,43 @@ struct VelocityContact {
 constexpr int kUnreached = 1 << 30;
 
 // Distance (in contacts) of each body from something immovable, for the ground-up order
-// (shock propagation). Bellman-Ford over the contact list: deterministic.
+// (shock propagation): a breadth-first search from the immovable bodies over the contact
+// graph (the shortest distances, so the same levels as relaxing every edge until nothing
+// changes, in linear time). Deterministic: it depends only on the edges.
 template <typename Edges>
 std::vector<int> ground_levels(const std::vector<Slot>& slots, const Edges& edges) {
     std::vector<int> level(slots.size(), kUnreached);
+    std::vector<std::uint32_t> first(slots.size() + 1, 0);
     for (const auto& [a, b] : edges) {
-        for (std::uint32_t i : {a, b}) {
-            if (detail::resolution_inverse_mass(slots[i].body) == 0.0f) level[i] = 0;
+        ++first[a + 1];
+        ++first[b + 1];
+    }
+    for (std::size_t i = 0; i < slots.size(); ++i) first[i + 1] += first[i];
+    std::vector<std::uint32_t> next(first[slots.size()]);
+    {
+        std::vector<std::uint32_t> at(first.begin(), first.end() - 1);
+        for (const auto& [a, b] : edges) {
+            next[at[a]++] = b;
+            next[at[b]++] = a;
         }
     }
-    for (bool changed = true; changed;) {
-        changed = false;
-        for (const auto& [a, b] : edges) {
-            int& la = level[a];
-            int& lb = level[b];
-            if (la != kUnreached && la + 1 < lb) { lb = la + 1; changed = true; }
-            if (lb != kUnreached && lb + 1 < la) { la = lb + 1; changed = true; }
+    std::vector<std::uint32_t> queue;
+    for (const auto& [a, b] : edges) {
+        for (std::uint32_t i : {a, b}) {
+            if (level[i] != 0 && detail::resolution_inverse_mass(slots[i].body) == 0.0f) {
+                level[i] = 0;
+                queue.push_back(i);
+            }
+        }
+    }
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        const std::uint32_t i = queue[head];
+        for (std::uint32_t e = first[i]; e < first[i + 1]; ++e) {
+            const std::uint32_t j = next[e];
+            if (level[j] == kUnreached) {
+                level[j] = level[i] + 1;
+                queue.push_back(j);
+            }
         }
     }
     return level;
