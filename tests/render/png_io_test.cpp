@@ -18,6 +18,7 @@
 
 #include "jostle/core/error.h"
 #include "jostle/render/png_io.h"
+#include "png_fast.h"  // engine/render/src (private): detail::adler32
 #include "test_support.h"
 
 namespace jostle {
@@ -335,3 +336,27 @@ TEST_F(WritePng, DefaultIsTheFastEncoder) {
 
 }  // namespace
 }  // namespace jostle
+
+// jostle's Adler-32 (16 bytes a step) is zlib's, for every length around the chunk and run
+// boundaries, from any starting value, and on all-0xff bytes (the largest sums: overflow).
+TEST(Adler32, EqualsZlibForEveryLengthAndStart) {
+    std::vector<std::uint8_t> data(3 * 5552 + 100);
+    std::uint32_t x = 12345;
+    for (std::uint8_t& b : data) {
+        x = x * 1664525u + 1013904223u;
+        b = static_cast<std::uint8_t>(x >> 24);
+    }
+    std::vector<std::uint8_t> ones(3 * 5552 + 100, 0xff);
+    for (const auto* bytes : {&data, &ones}) {
+        for (std::size_t n = 0; n <= bytes->size(); n += (n < 64 || (n % 5536) < 40 || (n % 5536) > 5500) ? 1 : 97) {
+            for (const std::uint32_t start : {1u, 0xfff0fff0u % 65521u, (65520u << 16) | 65520u}) {
+                const auto expected = static_cast<std::uint32_t>(adler32_z(start, bytes->data(), n));
+                ASSERT_EQ(jostle::detail::adler32(start, bytes->data(), n), expected) << "n " << n << " start " << start;
+            }
+        }
+    }
+    // Long runs (several MB, as a 1280x720 frame's rows).
+    std::vector<std::uint8_t> big(4 << 20);
+    for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<std::uint8_t>((i * 2654435761u) >> 13);
+    EXPECT_EQ(jostle::detail::adler32(1, big.data(), big.size()), static_cast<std::uint32_t>(adler32_z(1, big.data(), big.size())));
+}
