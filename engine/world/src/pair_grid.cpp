@@ -60,7 +60,9 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
     // up to four times the plain mean, so that a few long walls do not set it.
     const auto extent = [&](std::uint32_t i) {  // in double: a finite box can be wider than FLT_MAX
         const Aabb& b = items[i].box;
-        return std::fmax(static_cast<double>(b.max.x) - b.min.x, static_cast<double>(b.max.y) - b.min.y);
+        const double w = static_cast<double>(b.max.x) - b.min.x;
+        const double h = static_cast<double>(b.max.y) - b.min.y;
+        return w > h ? w : h;  // not fmax: no NaN here (asserted above), and fmax is a call
     };
     double sum = 0.0;
     for (std::uint32_t i = 0; i < n; ++i) sum += extent(i);
