@@ -102,6 +102,28 @@ struct VelocityContact {
 
 constexpr int kUnreached = 1 << 30;
 
+// An undirected edge list by body (compressed rows): the edges at body i are
+// edge[first[i] .. first[i + 1]), as indices into the list, in list order.
+struct EdgesByBody {
+    std::vector<std::uint32_t> first;
+    std::vector<std::uint32_t> edge;
+
+    template <typename Edges>
+    EdgesByBody(std::size_t bodies, const Edges& edges) : first(bodies + 1, 0), edge(2 * edges.size()) {
+        for (const auto& [a, b] : edges) {
+            ++first[a + 1];
+            ++first[b + 1];
+        }
+        for (std::size_t i = 0; i < bodies; ++i) first[i + 1] += first[i];
+        std::vector<std::uint32_t> at(first.begin(), first.end() - 1);
+        for (std::uint32_t k = 0; k < edges.size(); ++k) {
+            const auto& [a, b] = edges[k];
+            edge[at[a]++] = k;
+            edge[at[b]++] = k;
+        }
+    }
+};
+
 // Distance (in contacts) of each body from something immovable, for the ground-up order
 // (shock propagation): a breadth-first search from the immovable bodies over the contact
 // graph (the shortest distances, so the same levels as relaxing every edge until nothing
@@ -109,20 +131,7 @@ constexpr int kUnreached = 1 << 30;
 template <typename Edges>
 std::vector<int> ground_levels(const std::vector<Slot>& slots, const Edges& edges) {
     std::vector<int> level(slots.size(), kUnreached);
-    std::vector<std::uint32_t> first(slots.size() + 1, 0);
-    for (const auto& [a, b] : edges) {
-        ++first[a + 1];
-        ++first[b + 1];
-    }
-    for (std::size_t i = 0; i < slots.size(); ++i) first[i + 1] += first[i];
-    std::vector<std::uint32_t> next(first[slots.size()]);
-    {
-        std::vector<std::uint32_t> at(first.begin(), first.end() - 1);
-        for (const auto& [a, b] : edges) {
-            next[at[a]++] = b;
-            next[at[b]++] = a;
-        }
-    }
+    const EdgesByBody by_body(slots.size(), edges);
     std::vector<std::uint32_t> queue;
     for (const auto& [a, b] : edges) {
         for (std::uint32_t i : {a, b}) {
@@ -134,8 +143,9 @@ std::vector<int> ground_levels(const std::vector<Slot>& slots, const Edges& edge
     }
     for (std::size_t head = 0; head < queue.size(); ++head) {
         const std::uint32_t i = queue[head];
-        for (std::uint32_t e = first[i]; e < first[i + 1]; ++e) {
-            const std::uint32_t j = next[e];
+        for (std::uint32_t e = by_body.first[i]; e < by_body.first[i + 1]; ++e) {
+            const auto& [a, b] = edges[by_body.edge[e]];
+            const std::uint32_t j = a == i ? b : a;
             if (level[j] == kUnreached) {
                 level[j] = level[i] + 1;
                 queue.push_back(j);
@@ -444,21 +454,8 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     });
     std::vector<std::uint32_t> rank_ground_up(n_pairs);
     for (std::uint32_t r = 0; r < n_pairs; ++r) rank_ground_up[ground_up[r]] = r;
-    // Each body's pairs (compressed rows), to mark them when the body moves.
-    std::vector<std::uint32_t> first_pair(slots.size() + 1, 0);
-    for (const Pair& p : push_pairs) {
-        ++first_pair[p.a + 1];
-        ++first_pair[p.b + 1];
-    }
-    for (std::size_t i = 0; i < slots.size(); ++i) first_pair[i + 1] += first_pair[i];
-    std::vector<std::uint32_t> pairs_of(2 * std::size_t{n_pairs});
-    {
-        std::vector<std::uint32_t> at(first_pair.begin(), first_pair.end() - 1);
-        for (std::uint32_t k = 0; k < n_pairs; ++k) {
-            pairs_of[at[push_pairs[k].a]++] = k;
-            pairs_of[at[push_pairs[k].b]++] = k;
-        }
-    }
+    // Each body's pairs, to mark them when the body moves.
+    const EdgesByBody pairs_of(slots.size(), push_pairs);
     // Dirty marks as bits, one set in the order of the plain passes and one in ground-up order.
     const std::size_t words = (std::size_t{n_pairs} + 63) / 64;
     std::vector<std::uint64_t> dirty_in_order(words, 0), dirty_ground_up(words, 0);
@@ -470,7 +467,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     std::vector<bool> moved(slots.size(), false);
     const auto body_moved = [&](std::uint32_t i) {
         moved[i] = true;
-        for (std::uint32_t e = first_pair[i]; e < first_pair[i + 1]; ++e) set_dirty(pairs_of[e]);
+        for (std::uint32_t e = pairs_of.first[i]; e < pairs_of.first[i + 1]; ++e) set_dirty(pairs_of.edge[e]);
     };
     // The narrowphase already tested every pair at these positions: dirty are the pairs it
     // found overlapping, and those of bodies friction moved.
