@@ -4,9 +4,11 @@
 // nothing. Each interrupted run exits 130 and says so. The deterministic cases use the check
 // command's JOSTLE_TEST_INTERRUPT hook (a signal after the first scenario is checked, or after
 // the first new golden is staged); the rest send SIGINT at spread-out moments.
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "arena.h"
 #include "game/run_jostle.h"
 #include "jostle/core/interrupt.h"
+#include "jostle/core/rng.h"
 #include "jostle/render/png_io.h"
 #include "jostle/replay/check.h"
 #include "test_support.h"
@@ -31,6 +34,12 @@ using test::read_text;
 const std::string kAssets = JOSTLE_ASSETS_DIR;
 const std::string kInterrupted =
     "jostle: interrupted by SIGINT: stopped; files it finished are complete, unfinished ones were removed\n";
+
+// What a run stopped by `sig` prints (SIGINT or SIGTERM).
+std::string interrupted_by(int sig) {
+    return std::string("jostle: interrupted by ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
+           ": stopped; files it finished are complete, unfinished ones were removed\n";
+}
 
 // Every file in a folder (not recursive) with its contents.
 std::map<std::string, std::string> snapshot(const fs::path& folder) {
@@ -91,10 +100,10 @@ protected:
         fs::remove(scenarios() / "b.tick_45.png");
     }
 
-    test::RunResult check(std::vector<std::string> args, int sigint_after_ms = -1) {
+    test::RunResult check(std::vector<std::string> args, int signal_after_ms = -1, int signal = SIGINT) {
         args.insert(args.begin(), {"check", "--assets", kAssets});
         args.push_back(scenarios().string());
-        return test::run_jostle_binary(args, "/dev/null", "", sigint_after_ms);
+        return test::run_jostle_binary(args, "/dev/null", "", signal_after_ms, signal);
     }
 
     const test::TempFolder dir_{"interrupt"};
@@ -211,6 +220,109 @@ TEST_F(Interrupt, RecordInterruptedWritesNothing) {
     EXPECT_EQ(r.err, kInterrupted);
     EXPECT_FALSE(fs::exists(scn));
     EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{});
+}
+
+// The trial: 60 runs of `play`, `check` and `check --update` (20 each), each sent
+// SIGINT or SIGTERM at a seeded random moment between its start and a little after the time
+// an uninterrupted run takes. Whatever the moment: frames on disk are whole PNGs and an
+// unfinished animation is absent; a plain check writes nothing; an update leaves the goldens
+// all old or all new; no temporary file is left; and the exit status says what happened:
+// 128 + the signal with the message naming it, the signal's default action (before the
+// handler is installed, when nothing was done yet), or the uninterrupted result.
+TEST_F(Interrupt, SixtyRandomSignalsDuringPlayCheckAndUpdate) {
+    suite_needing_update();
+    const auto before = snapshot(scenarios());
+    const fs::path saved = dir_.path() / "saved";
+    fs::copy(scenarios(), saved);
+    std::ofstream(dir_.path() / "long.scn", std::ios::binary)
+        << "jostle-scenario 1\nengine 0.1.0\nlevel arena\nseed 1\ntick-rate 60\nlevel-hash " << level_hash_ << "\n\n"
+        << "0-299 up fire\n300-599 left up\n";
+    const auto play = [&](const std::string& tag, int delay_ms, int sig) {
+        return test::run_jostle_binary({"play", dir_.file("long.scn"), "--assets", kAssets, "--out",
+                                        (dir_.path() / ("frames_" + tag)).string(), "--size", "160x120", "--every", "4",
+                                        "--anim", (dir_.path() / ("run_" + tag + ".png")).string()},
+                                       "/dev/null", "", delay_ms, sig);
+    };
+    const auto restore = [&](const fs::path& from) {
+        fs::remove_all(scenarios());
+        fs::copy(from, scenarios());
+    };
+    // How long each command takes when left alone (this machine, this build), and its results.
+    const auto timed = [](auto&& run) {
+        const auto start = std::chrono::steady_clock::now();
+        const test::RunResult r = run();
+        const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
+        return std::pair{r, static_cast<int>(ms.count())};
+    };
+    const auto [play_run, play_ms] = timed([&] { return play("whole", -1, SIGINT); });
+    ASSERT_EQ(play_run.status, 0) << play_run.err;
+    const auto [update_run, update_ms] = timed([&] { return check({"--update"}); });
+    ASSERT_EQ(update_run.status, 0) << update_run.err;
+    const auto after = snapshot(scenarios());
+    ASSERT_FALSE(same_files(before, after));
+    const auto [check_run, check_ms] = timed([&] { return check({}); });
+    ASSERT_EQ(check_run.status, 0) << check_run.err;
+    const fs::path updated = dir_.path() / "updated";  // goldens a plain check passes
+    fs::copy(scenarios(), updated);
+
+    Rng rng(20261126);
+    int interrupted = 0, killed = 0, finished = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        const int command = trial % 3;  // 0 play, 1 check, 2 check --update
+        const int full_ms = command == 0 ? play_ms : command == 1 ? check_ms : update_ms;
+        const int delay_ms = static_cast<int>(rng.below(static_cast<std::uint32_t>(full_ms * 11 / 10 + 1)));
+        const int sig = rng.below(2) == 0 ? SIGINT : SIGTERM;
+        const std::string what = std::string(command == 0 ? "play" : command == 1 ? "check" : "check --update") +
+                                 " with " + (sig == SIGINT ? "SIGINT" : "SIGTERM") + " at " +
+                                 std::to_string(delay_ms) + " ms (trial " + std::to_string(trial) + ")";
+        test::RunResult r;
+        if (command == 0) {
+            r = play(std::to_string(trial), delay_ms, sig);
+            const fs::path frames = dir_.path() / ("frames_" + std::to_string(trial));
+            const fs::path anim = dir_.path() / ("run_" + std::to_string(trial) + ".png");
+            if (fs::exists(frames)) {
+                for (const auto& entry : fs::directory_iterator(frames)) {
+                    EXPECT_NO_THROW(read_png(entry.path().string())) << entry.path() << ", " << what;
+                }
+            }
+            // Absent, or complete (a signal while the last file was renamed into place is held
+            // back until it is there, and then still reported).
+            if (r.status == 0 || fs::exists(anim)) {
+                EXPECT_NO_THROW(read_png(anim.string())) << what;
+            }
+        } else {
+            restore(command == 1 ? updated : saved);
+            const auto start = snapshot(scenarios());
+            r = command == 1 ? check({}, delay_ms, sig) : check({"--update"}, delay_ms, sig);
+            const auto now = snapshot(scenarios());
+            if (command == 1) {
+                EXPECT_TRUE(same_files(now, start)) << "a plain check writes nothing, " << what;
+            } else {
+                EXPECT_TRUE(now == before || now == after) << "half-updated goldens, " << what;
+                if (r.status == 0) {
+                    EXPECT_TRUE(same_files(now, after)) << what;
+                }
+            }
+        }
+        EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{}) << what;
+        if (r.status == 128 + sig) {
+            ++interrupted;
+            EXPECT_EQ(r.err, interrupted_by(sig)) << what;
+        } else if (r.term_signal != 0) {
+            // The default action: the signal came before the handler was installed, or after
+            // it was removed on the way out. The checks above hold either way.
+            EXPECT_EQ(r.term_signal, sig) << what;
+            ++killed;
+        } else {
+            EXPECT_EQ(r.status, 0) << what << ": " << r.err;
+            ++finished;
+        }
+    }
+    std::cout << "60 trials (play " << play_ms << " ms, check " << check_ms << " ms, update " << update_ms
+              << " ms uninterrupted): " << interrupted << " stopped cleanly, " << killed
+              << " ended by the signal's default action, " << finished << " finished first\n";
+    // Most moments fall inside the run; a build so slow to start that none does is a bad trial.
+    EXPECT_GE(interrupted, 20) << "too few runs were interrupted: the moments miss the work";
 }
 
 // The library's side, in this process: a signal while commit_updates stages its files makes

@@ -1,7 +1,8 @@
 // run_jostle.h: runs the built jostle program (JOSTLE_BINARY), or another program, for the
 // end-to-end tests, with stdin from a file and an optional working folder, collecting its exit
 // status, stdout and stderr (both pipes polled, so neither can fill up and block the child).
-// The interruption tests also have it send SIGINT a given time after the start.
+// The interruption tests also have it send a signal (SIGINT unless told) a given time after
+// the start.
 #pragma once
 
 #include <fcntl.h>
@@ -27,7 +28,7 @@ namespace jostle::test {
 struct RunResult {
     int status = -1;  // exit status, or -1 if it did not exit normally
     int term_signal = 0;     // the signal that ended it, if one did
-    bool signalled = false;  // the SIGINT asked for was sent before the program ended
+    bool signalled = false;  // the signal asked for was sent before the program ended
     std::string out;
     std::string err;
 };
@@ -35,7 +36,7 @@ struct RunResult {
 // Runs `program` (a path) with `args`.
 inline RunResult run_program(const std::string& program, const std::vector<std::string>& args,
                              const std::string& stdin_path = "/dev/null", const std::string& cwd = "",
-                             int sigint_after_ms = -1) {
+                             int signal_after_ms = -1, int signal = SIGINT) {
     RunResult result;
     int out_pipe[2];
     int err_pipe[2];
@@ -74,11 +75,11 @@ inline RunResult run_program(const std::string& program, const std::vector<std::
     const auto started = std::chrono::steady_clock::now();
     while (open_count > 0) {
         int timeout = -1;
-        if (sigint_after_ms >= 0 && !result.signalled) {
+        if (signal_after_ms >= 0 && !result.signalled) {
             const auto elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - started);
-            timeout = std::max(0, sigint_after_ms - static_cast<int>(elapsed.count()));
+            timeout = std::max(0, signal_after_ms - static_cast<int>(elapsed.count()));
             if (timeout == 0) {
-                kill(pid, SIGINT);
+                kill(pid, signal);
                 result.signalled = true;
                 timeout = -1;
             }
@@ -115,8 +116,8 @@ inline RunResult run_program(const std::string& program, const std::vector<std::
 
 // Runs the built jostle program.
 inline RunResult run_jostle_binary(const std::vector<std::string>& args, const std::string& stdin_path = "/dev/null",
-                                   const std::string& cwd = "", int sigint_after_ms = -1) {
-    return run_program(JOSTLE_BINARY, args, stdin_path, cwd, sigint_after_ms);
+                                   const std::string& cwd = "", int signal_after_ms = -1, int signal = SIGINT) {
+    return run_program(JOSTLE_BINARY, args, stdin_path, cwd, signal_after_ms, signal);
 }
 
 }  // namespace jostle::test
