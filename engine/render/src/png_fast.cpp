@@ -506,27 +506,34 @@ void compress_strip(const std::uint8_t* data, std::size_t n, bool final, BitWrit
         out.put(cl_code[it.symbol], cl_len[it.symbol]);
         if (kClExtraBits[it.symbol] != 0) out.put(it.extra, kClExtraBits[it.symbol]);
     }
-    // Literal codes packed with their lengths: one table load per byte.
+    // Each symbol's code packed with its bit count (code << 8 | count), and for the lengths
+    // with the extra bits too: one table load and one put per literal pair, length and
+    // distance (the writer holds up to 63 bits, so a put may carry up to 32).
     std::array<std::uint32_t, 256> literal{};
     for (int b = 0; b < 256; ++b) literal[static_cast<std::size_t>(b)] = (std::uint32_t{lit_code[static_cast<std::size_t>(b)]} << 8) | lit_len[b];
+    std::array<std::uint32_t, kMaxMatch + 1> length_bits{};  // <= 15 + 5 bits
+    for (int len = 3; len <= kMaxMatch; ++len) {
+        const std::size_t lc = kLenCode[static_cast<std::size_t>(len)];
+        const std::uint32_t code = lit_code[257 + lc] | (static_cast<std::uint32_t>(len - kLenBase[lc]) << lit_len[257 + lc]);
+        length_bits[static_cast<std::size_t>(len)] = (code << 8) | (lit_len[257 + lc] + kLenExtra[lc]);
+    }
     const std::uint8_t* p = data;
     for (const Sequence& s : t.sequences) {
-        for (std::uint32_t i = 0; i < s.literals; ++i) {
+        std::uint32_t i = 0;
+        for (; i + 2 <= s.literals; i += 2, p += 2) {  // two literals: <= 30 bits
+            const std::uint32_t a = literal[p[0]], b = literal[p[1]];
+            out.put((a >> 8) | ((b >> 8) << (a & 0xffu)), static_cast<int>((a & 0xffu) + (b & 0xffu)));
+        }
+        if (i < s.literals) {
             const std::uint32_t l = literal[*p++];
             out.put(l >> 8, static_cast<int>(l & 0xffu));
         }
         if (s.length == 0) continue;
-        const int lc = kLenCode[s.length];
-        out.put(lit_code[257u + static_cast<std::size_t>(lc)], lit_len[257 + lc]);
-        if (kLenExtra[static_cast<std::size_t>(lc)] != 0) {
-            out.put(s.length - kLenBase[static_cast<std::size_t>(lc)], kLenExtra[static_cast<std::size_t>(lc)]);
-        }
+        const std::uint32_t l = length_bits[s.length];
+        out.put(l >> 8, static_cast<int>(l & 0xffu));
         const std::uint32_t distance = std::uint32_t{s.dist} + 1;
-        const int dc = dist_code(distance);
-        out.put(dist_code_bits[static_cast<std::size_t>(dc)], dist_len[dc]);
-        if (kDistExtra[static_cast<std::size_t>(dc)] != 0) {
-            out.put(distance - kDistBase[static_cast<std::size_t>(dc)], kDistExtra[static_cast<std::size_t>(dc)]);
-        }
+        const auto dc = static_cast<std::size_t>(dist_code(distance));  // <= 15 + 13 bits
+        out.put(dist_code_bits[dc] | ((distance - kDistBase[dc]) << dist_len[dc]), dist_len[dc] + kDistExtra[dc]);
         p += s.length;
     }
     out.put(lit_code[256], lit_len[256]);
