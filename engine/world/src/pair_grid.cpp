@@ -33,6 +33,17 @@ std::uint32_t bucket_of(std::int32_t x, std::int32_t y, std::uint32_t mask) {
     return h & mask;
 }
 
+// An entry's bits: the item's ordinal below kFirstColumn; whether the cell is in the item's
+// first column of cells, its first row; whether the item is active.
+constexpr std::uint32_t kFirstColumn = 1u << 29;
+constexpr std::uint32_t kFirstRow = 1u << 30;
+constexpr std::uint32_t kActive = 1u << 31;
+constexpr std::uint32_t kOrdinal = kFirstColumn - 1;
+
+std::uint64_t cell_key(std::int32_t x, std::int32_t y) {
+    return std::uint64_t{static_cast<std::uint32_t>(x)} | (std::uint64_t{static_cast<std::uint32_t>(y)} << 32);
+}
+
 // Closed overlap, as b2TestOverlap for finite boxes. Not short-circuited: each comparison
 // alone is unpredictable, their conjunction nearly always false.
 bool touch(const Aabb& a, const Aabb& b) {
@@ -47,6 +58,7 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
     out.clear();
     const auto n = static_cast<std::uint32_t>(items.size());
     if (n < 2) return;
+    JOSTLE_ASSERT(n <= kOrdinal + 1, "PairGrid: at most 2^29 items");
     for (std::uint32_t i = 0; i < n; ++i) {
         const Aabb& b = items[i].box;
         JOSTLE_ASSERT(std::isfinite(b.min.x) && std::isfinite(b.min.y) && std::isfinite(b.max.x) &&
@@ -122,13 +134,16 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
         const Cells& c = cells_[i];
         for (std::int32_t y = c.y0; y <= c.y1 && c.x0 <= c.x1; ++y) {
             for (std::int32_t x = c.x0; x <= c.x1; ++x) {
-                entries_[fill_[bucket_of_entry_[next++]]++] = {x, y, c.x0, c.y0, items[i].box, i, items[i].active};
+                const std::uint32_t bits = i | (x == c.x0 ? kFirstColumn : 0u) | (y == c.y0 ? kFirstRow : 0u) |
+                                           (items[i].active ? kActive : 0u);
+                entries_[fill_[bucket_of_entry_[next++]]++] = {cell_key(x, y), items[i].box, bits};
             }
         }
     }
 
     // Pairs, bucket by bucket: a pair shows up in every cell both boxes share; it is kept in
-    // one, the cell of the corner (max of the mins) where their overlap starts. The tests
+    // one, the cell of the corner (max of the mins) where their overlap starts: the shared
+    // cell in the first column of one of them and the first row of one of them. The tests
     // are combined without branches (each alone is a coin toss) and every candidate's key
     // is written, the count advancing only for a real pair. Keys are (lower item, higher
     // item) in one integer, sorted at the end.
@@ -143,14 +158,13 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
             // not with the candidates tested).
             if (keys_.size() < count + (end - p)) keys_.resize(2 * (count + (end - p)));
             const Entry& e = entries_[p];
-            const std::uint64_t high = std::uint64_t{e.item} << bits;
+            const std::uint64_t high = std::uint64_t{e.bits & kOrdinal} << bits;
             for (std::uint32_t q = p + 1; q < end; ++q) {
                 const Entry& f = entries_[q];
-                const std::int32_t corner_x = std::max(e.x0, f.x0);
-                const std::int32_t corner_y = std::max(e.y0, f.y0);
-                const bool here = (f.x == e.x) & (f.y == e.y) & (corner_x == e.x) & (corner_y == e.y);
-                keys_[count] = high | f.item;
-                count += static_cast<std::size_t>(here & (e.active | f.active) & touch(e.box, f.box));
+                constexpr std::uint32_t kAll = kFirstColumn | kFirstRow | kActive;
+                const bool here = (f.cell == e.cell) & (((e.bits | f.bits) & kAll) == kAll);
+                keys_[count] = high | (f.bits & kOrdinal);
+                count += static_cast<std::size_t>(here & touch(e.box, f.box));
             }
         }
     }
