@@ -136,7 +136,7 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
             for (std::int32_t x = c.x0; x <= c.x1; ++x) {
                 const std::uint32_t bits = i | (x == c.x0 ? kFirstColumn : 0u) | (y == c.y0 ? kFirstRow : 0u) |
                                            (items[i].active ? kActive : 0u);
-                entries_[fill_[bucket_of_entry_[next++]]++] = {cell_key(x, y), items[i].box, bits};
+                entries_[fill_[bucket_of_entry_[next++]]++] = {cell_key(x, y), bits};
             }
         }
     }
@@ -158,13 +158,14 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
             // not with the candidates tested).
             if (keys_.size() < count + (end - p)) keys_.resize(2 * (count + (end - p)));
             const Entry& e = entries_[p];
+            const Aabb& e_box = items[e.bits & kOrdinal].box;
             const std::uint64_t high = std::uint64_t{e.bits & kOrdinal} << bits;
             for (std::uint32_t q = p + 1; q < end; ++q) {
                 const Entry& f = entries_[q];
                 constexpr std::uint32_t kAll = kFirstColumn | kFirstRow | kActive;
                 const bool here = (f.cell == e.cell) & (((e.bits | f.bits) & kAll) == kAll);
                 keys_[count] = high | (f.bits & kOrdinal);
-                count += static_cast<std::size_t>(here & touch(e.box, f.box));
+                count += static_cast<std::size_t>(here & touch(e_box, items[f.bits & kOrdinal].box));
             }
         }
     }
