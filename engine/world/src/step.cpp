@@ -96,11 +96,38 @@ struct VelocityContact {
     Vec2 normal;
     float target;   // normal speed to reach: 0, a bounce, or closing a speculative gap
     float friction;
+    float ima = 0.0f, imb = 0.0f;  // the bodies' inverse masses as resolution sees them (fixed
+                                   // through a step; kept here, not re-read from the bodies)
     float normal_impulse = 0.0f;   // accumulated, >= 0
     float tangent_impulse = 0.0f;  // accumulated, |.| <= friction * normal_impulse
 };
 
 constexpr int kUnreached = 1 << 30;
+
+// Indices 0..n-1 of pairs, ordered by the lower ground level of each pair's two bodies, ties
+// in index order, pairs with nothing immovable below them last: the ground-up order of
+// shock propagation. A counting sort (levels are small), so exactly a stable sort's order.
+template <typename PairAt>
+std::vector<std::uint32_t> ground_up_order(const std::vector<int>& level, std::size_t n, PairAt pair_at) {
+    std::vector<std::uint32_t> key(n);
+    int top = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto [a, b] = pair_at(k);
+        const int l = std::min(level[a], level[b]);
+        if (l != kUnreached) top = std::max(top, l);
+    }
+    std::vector<std::uint32_t> start(static_cast<std::size_t>(top) + 3, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto [a, b] = pair_at(k);
+        const int l = std::min(level[a], level[b]);
+        key[k] = l == kUnreached ? static_cast<std::uint32_t>(top) + 1 : static_cast<std::uint32_t>(l);
+        ++start[key[k] + 1];
+    }
+    for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+    std::vector<std::uint32_t> order(n);
+    for (std::size_t k = 0; k < n; ++k) order[start[key[k]]++] = static_cast<std::uint32_t>(k);
+    return order;
+}
 
 // An undirected edge list by body (compressed rows): the edges at body i are
 // edge[first[i] .. first[i + 1]), as indices into the list, in list order.
@@ -165,8 +192,16 @@ std::pair<float, float> pair_masses(const std::vector<Slot>& slots, const std::v
     return {ima, imb};
 }
 
+VelocityContact velocity_contact(std::uint32_t a, const EntityDesc& ba, std::uint32_t b, const EntityDesc& bb,
+                                 Vec2 normal, float target) {
+    return {a, b, normal, target, mixed_friction(ba, bb), detail::resolution_inverse_mass(ba),
+            detail::resolution_inverse_mass(bb)};
+}
+
 void solve_velocity(std::vector<Slot>& slots, const std::vector<int>& level, VelocityContact& vc, bool shock) {
-    const auto [ima, imb] = pair_masses(slots, level, vc.a, vc.b, shock);
+    // Under shock propagation the body nearer the ground stands still (as in pair_masses).
+    const float ima = shock && level[vc.a] < level[vc.b] ? 0.0f : vc.ima;
+    const float imb = shock && level[vc.b] < level[vc.a] ? 0.0f : vc.imb;
     const float k = ima + imb;
     if (!(k > 0.0f)) return;
     Slot& sa = slots[vc.a];
@@ -197,15 +232,12 @@ void solve_velocity(std::vector<Slot>& slots, const std::vector<int>& level, Vel
 // so a resting stack ends still.
 void solve_velocities(std::vector<Slot>& slots, const std::vector<int>& level, std::vector<VelocityContact>& vcs,
                       int passes) {
-    std::vector<VelocityContact*> ground_up;
-    for (VelocityContact& vc : vcs) ground_up.push_back(&vc);
-    std::stable_sort(ground_up.begin(), ground_up.end(), [&](const VelocityContact* x, const VelocityContact* y) {
-        return std::min(level[x->a], level[x->b]) < std::min(level[y->a], level[y->b]);
-    });
+    const std::vector<std::uint32_t> ground_up =
+        ground_up_order(level, vcs.size(), [&](std::size_t k) { return std::pair{vcs[k].a, vcs[k].b}; });
     passes = std::max(passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         if (pass == passes - 1 && passes > 1) {
-            for (VelocityContact* vc : ground_up) solve_velocity(slots, level, *vc, true);
+            for (const std::uint32_t k : ground_up) solve_velocity(slots, level, vcs[k], true);
         } else {
             for (VelocityContact& vc : vcs) solve_velocity(slots, level, vc, false);
         }
@@ -236,7 +268,7 @@ void World::Impl::integrate(float dt) {
         const EntityDesc& ba = slots[c.a.index].body;
         const EntityDesc& bb = slots[c.b.index].body;
         if (c.trigger || c.corner || !detail::resolvable(ba, bb) || !detail::may_meet(ba, c.a, bb, c.b)) continue;
-        carried.push_back({c.a.index, c.b.index, c.normal, 0.0f, mixed_friction(ba, bb)});
+        carried.push_back(velocity_contact(c.a.index, ba, c.b.index, bb, c.normal, 0.0f));
         edges.emplace_back(c.a.index, c.b.index);
     }
     if (!carried.empty()) {
@@ -396,7 +428,6 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         edges.emplace_back(p.b, p.b);
     }
     const std::vector<int> level = ground_levels(slots, edges);
-    const auto low_level = [&](std::uint32_t a, std::uint32_t b) { return std::min(level[a], level[b]); };
 
     // Velocity: new impacts (bounce above the threshold), kept contacts closing their gap.
     std::vector<VelocityContact> vcs;
@@ -416,7 +447,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         } else if (vn < -desc.restitution_threshold) {
             target = -mixed_restitution(ba, bb) * vn;
         }
-        vcs.push_back({c->pair.a, c->pair.b, n, target, mixed_friction(ba, bb)});
+        vcs.push_back(velocity_contact(c->pair.a, ba, c->pair.b, bb, n, target));
     }
     solve_velocities(slots, level, vcs, desc.velocity_passes);
 
@@ -447,11 +478,8 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     // linear slop uncorrected). Resting contacts so end within the slop, as documented.
     const float settled = std::fmax(0.5f * desc.slop, 0.0f);
     const auto n_pairs = static_cast<std::uint32_t>(push_pairs.size());
-    std::vector<std::uint32_t> ground_up(n_pairs);
-    for (std::uint32_t k = 0; k < n_pairs; ++k) ground_up[k] = k;
-    std::stable_sort(ground_up.begin(), ground_up.end(), [&](std::uint32_t x, std::uint32_t y) {
-        return low_level(push_pairs[x].a, push_pairs[x].b) < low_level(push_pairs[y].a, push_pairs[y].b);
-    });
+    const std::vector<std::uint32_t> ground_up =
+        ground_up_order(level, n_pairs, [&](std::size_t k) { return std::pair{push_pairs[k].a, push_pairs[k].b}; });
     std::vector<std::uint32_t> rank_ground_up(n_pairs);
     for (std::uint32_t r = 0; r < n_pairs; ++r) rank_ground_up[ground_up[r]] = r;
     // Each body's pairs, to mark them when the body moves.
