@@ -57,7 +57,11 @@ struct PolygonAccess {
 };
 
 // A motion from `from` by `d` whose end is finite too (a sum can overflow to infinity).
-inline bool valid_motion(Vec2 from, Vec2 d) { return finite(from) && finite(d) && finite(from + d); }
+// One test of the six values' x - x (see all_finite), not a branch for each.
+inline bool valid_motion(Vec2 from, Vec2 d) {
+    const Vec2 end = from + d;
+    return all_finite(from.x, from.y, d.x, d.y, end.x) & all_finite(end.y, 0.0f, 0.0f);
+}
 
 // -0 becomes +0 (x + 0 is x for every other x): results print and hash the same whichever
 // way a zero component was reached.
@@ -85,6 +89,17 @@ inline unsigned lane_bits(Int4 m) {
     return static_cast<unsigned>(_mm_movemask_ps(reinterpret_cast<__m128>(m)));
 #else
     return static_cast<unsigned>((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
+#endif
+}
+
+// The square root of v >= 0 (or NaN): std::sqrt's value (IEEE's correctly rounded root),
+// without the library call that std::sqrt keeps for a negative argument to set errno, whose
+// stack frame every caller then pays for, hit or miss.
+inline float sqrt_nonneg(float v) {
+#if defined(__SSE__)
+    return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(v)));
+#else
+    return std::sqrt(v);
 #endif
 }
 
