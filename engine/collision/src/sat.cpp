@@ -4,9 +4,6 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#endif
 
 #include "internal.h"
 
@@ -207,46 +204,30 @@ using detail::Float4;
     return best;
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#ifdef JOSTLE_AVX2_PATHS
 // The same with eight faces a group (AVX2, chosen at run time): a hexagon's faces are one
 // group instead of two. Every lane still does exactly the scalar arithmetic (a target
 // attribute changes which instructions run, not the rounding: no FMA, -ffp-contract=off), and
 // the first group with a gap and the first of tied faces are the same faces as above, so the
 // answers are the same bit for bit. Reads 8 slots a group: only for a Polygon's 16-slot arrays
 // (callers pass boxes, whose arrays have 4, to the SSE version).
-using Float8 = float __attribute__((vector_size(32)));
-using Int8 = int __attribute__((vector_size(32)));
-// Bit i set when lane i of a comparison's result is true (VMOVMSKPS).
-[[gnu::target("avx2"), gnu::always_inline]] inline unsigned bits(Int8 m) {
-    return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(m)));
-}
-// Faces (x, y pairs) 0-3 and 4-7 of a group as x and y lanes in face order: the 128-bit halves
-// regrouped (faces 0, 1, 4, 5 and 2, 3, 6, 7), then x and y picked within each half.
-[[gnu::target("avx2"), gnu::always_inline]] inline void split(Float8 lo, Float8 hi, Float8& x, Float8& y) {
-    const Float8 a = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 8, 9, 10, 11);
-    const Float8 b = __builtin_shufflevector(lo, hi, 4, 5, 6, 7, 12, 13, 14, 15);
-    x = __builtin_shufflevector(a, b, 0, 2, 8, 10, 4, 6, 12, 14);
-    y = __builtin_shufflevector(a, b, 1, 3, 9, 11, 5, 7, 13, 15);
-}
+using detail::Float8;
+using detail::Int8;
 
 [[gnu::target("avx2")]] FaceSeparation max_face_separation_avx(const Vec2* points, const Vec2* normals, int count,
                                                               const Vec2* others, int other_count) {
     FaceSeparation best;
     for (int first = 0; first < count; first += 8) {
-        Float8 n0, n1, p0, p1, nx, ny, px, py;
-        std::memcpy(&n0, normals + first, sizeof n0);
-        std::memcpy(&n1, normals + first + 4, sizeof n1);
-        std::memcpy(&p0, points + first, sizeof p0);
-        std::memcpy(&p1, points + first + 4, sizeof p1);
-        split(n0, n1, nx, ny);
-        split(p0, p1, px, py);
+        Float8 nx, ny, px, py;
+        detail::load_xy8(normals + first, nx, ny);
+        detail::load_xy8(points + first, px, py);
         Float8 s = nx * (others[0].x - px) + ny * (others[0].y - py);
         for (int j = 1; j < other_count; ++j) {
             const Float8 d = nx * (others[j].x - px) + ny * (others[j].y - py);
             s = d < s ? d : s;
         }
         const Int8 live = Int8{0, 1, 2, 3, 4, 5, 6, 7} < count - first;  // the lanes holding faces
-        const unsigned gaps = bits(live & ~(s <= 0.0f));  // > 0, or NaN past the limits
+        const unsigned gaps = detail::lane_bits8(live & ~(s <= 0.0f));  // > 0, or NaN past the limits
         if (gaps != 0) {
             const int lane = std::countr_zero(gaps);
             return {s[lane], first + lane};
@@ -254,11 +235,8 @@ using Int8 = int __attribute__((vector_size(32)));
         // The group's largest separation (a horizontal VMAXPS over the live lanes) and the
         // first lane holding it.
         const Float8 minus_inf = {-INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY};
-        Float8 m = live ? s : minus_inf;
-        m = __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3) > m ? __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3) : m;
-        m = __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5) > m ? __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5) : m;
-        m = __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6) > m ? __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6) : m;
-        const int lane = std::countr_zero(bits(live & (s == m)));
+        const Float8 m = detail::max8(live ? s : minus_inf);
+        const int lane = std::countr_zero(detail::lane_bits8(live & (s == m)));
         if (s[lane] > best.separation) best = {s[lane], first + lane};
     }
     return best;
@@ -267,8 +245,7 @@ using Int8 = int __attribute__((vector_size(32)));
 // AVX2 for polygons of more than four faces when the CPU has it (checked once).
 FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int count, const Vec2* others,
                                    int other_count) {
-    static const bool avx = __builtin_cpu_supports("avx2");
-    if (count > 4 && avx) return max_face_separation_avx(points, normals, count, others, other_count);
+    if (count > 4 && detail::has_avx2()) return max_face_separation_avx(points, normals, count, others, other_count);
     return max_face_separation_sse(points, normals, count, others, other_count);
 }
 #else
