@@ -25,7 +25,7 @@ Manifold collide(const Circle& a, const Circle& b) {
     if (!(dist2 <= r * r)) return {};
     // 09-72: mtd = (c1 - c2)/|c1 - c2| (r1 + r2 - |c1 - c2|) = -depth * normal. Coincident
     // centres have no direction; {1, 0} is the defined one (as in Box2D).
-    const float len = std::sqrt(dist2);  // one square root for the depth and the normal
+    const float len = detail::sqrt_nonneg(dist2);  // one square root for the depth and the normal
     return hit_with(r - len, len > 0.0f ? Vec2{d.x / len, d.y / len} : Vec2{1.0f, 0.0f});
 }
 
@@ -68,6 +68,37 @@ inline int first_face_at(const Polygon& poly, detail::Float4 cc, float most) {
     return faces == 0 ? 0 : std::countr_zero(faces);  // none: every face NaN
 }
 
+// The vertex nearest the point and its squared distance: the first i of least dot(o, o),
+// o = c - p_i (a loop keeping the first strict minimum), dist2 = +inf and vertex 0 when every
+// distance overflows. Two vertices a step (the face_pair_separation layout: lanes 0 and 2
+// are vertices 2k and 2k + 1, each the scalar o.x * o.x + o.y * o.y); each lane keeps its
+// own first minimum, so neither a branch per vertex nor a second pass is needed.
+struct NearestVertex {
+    float dist2 = INFINITY;
+    int vertex = 0;
+};
+inline NearestVertex nearest_vertex(const Polygon& poly, detail::Float4 cc) {
+    using detail::Float4;
+    using detail::Int4;
+    Float4 best = {INFINITY, INFINITY, INFINITY, INFINITY};
+    Int4 index = {0, 0, 0, 0};
+    for (int k = 0; k < (poly.count() + 1) / 2; ++k) {
+        Float4 p;
+        std::memcpy(&p, poly.points().data() + 2 * k, sizeof p);
+        const Float4 o = cc - p;
+        const Float4 m = o * o;
+        Float4 d2 = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
+        if (2 * k + 1 == poly.count()) d2[2] = INFINITY;  // no vertex in slot n
+        const Int4 closer = d2 < best;
+        best = closer ? d2 : best;
+        index = closer ? Int4{2 * k, 2 * k, 2 * k + 1, 2 * k + 1} : index;
+    }
+    // Even vertices in lane 0, odd ones in lane 2: the smaller distance, or on a tie the
+    // smaller index.
+    const bool odd = best[2] < best[0] || (best[2] == best[0] && index[2] < index[0]);
+    return {odd ? best[2] : best[0], odd ? index[2] : index[0]};
+}
+
 // collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
 // Kept out of line so that the common early out is a short function with nothing to save.
 [[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, detail::Float4 cc, float max_sep) {
@@ -83,20 +114,17 @@ inline int first_face_at(const Polygon& poly, detail::Float4 cc, float most) {
     if (dot(c - p0, e) > 0.0f && dot(c - p1, e) < 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
     // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
     // plain difference of points (exact for nearby floats).
-    Vec2 d{};
-    float dist2 = INFINITY;
-    int vertex = 0;
-    for (int i = 0; i < a.count(); ++i) {
-        const Vec2 o = c - a.points()[i];
-        if (dot(o, o) < dist2) { dist2 = dot(o, o); d = o; vertex = i; }
-    }
+    const NearestVertex nearest = nearest_vertex(a, cc);
+    const float dist2 = nearest.dist2;
     if (!(dist2 <= b.radius * b.radius)) return {};
+    const int vertex = nearest.vertex;
+    const Vec2 d = c - a.points()[vertex];  // used only when dist2 is finite
     // A direction outside the vertex's cone of normals means the centre is on the vertex up
     // to rounding: the nearer of its two faces' normals. (normalize_or(d, ...) with the one
     // square root that the depth needs too.)
     const Vec2 n_prev = a.normals()[detail::prev_index(vertex, a.count())];
     const Vec2 n_next = a.normals()[vertex];
-    const float len = std::sqrt(dist2);
+    const float len = detail::sqrt_nonneg(dist2);
     Vec2 n = len > 0.0f && len < INFINITY ? Vec2{d.x / len, d.y / len} : a.normals()[max_edge];
     if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) n = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
     return hit_with(b.radius - len, n);
@@ -167,7 +195,7 @@ inline Manifold box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
     const float dist2 = dot(d, d);
     if (dist2 > 0.0f) {
         if (!(dist2 <= r * r)) return {};
-        const float dist = std::sqrt(dist2);
+        const float dist = detail::sqrt_nonneg(dist2);
         return hit_with(r - dist, Vec2{d.x / dist, d.y / dist});
     }
     float depth = c.x - lo.x;

@@ -4,8 +4,12 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #if defined(__SSE__)
 #include <xmmintrin.h>
+#endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
 #endif
 
 #include "jostle/collision.h"
@@ -57,7 +61,12 @@ struct PolygonAccess {
 };
 
 // A motion from `from` by `d` whose end is finite too (a sum can overflow to infinity).
-inline bool valid_motion(Vec2 from, Vec2 d) { return finite(from) && finite(d) && finite(from + d); }
+// One test of the six values' x - x (see all_finite), not a branch for each.
+inline bool valid_motion(Vec2 from, Vec2 d) {
+    const Vec2 end = from + d;
+    return ((from.x - from.x) + (from.y - from.y)) + ((d.x - d.x) + (d.y - d.y)) + ((end.x - end.x) + (end.y - end.y)) ==
+           0.0f;
+}
 
 // -0 becomes +0 (x + 0 is x for every other x): results print and hash the same whichever
 // way a zero component was reached.
@@ -87,6 +96,54 @@ inline unsigned lane_bits(Int4 m) {
     return static_cast<unsigned>((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
 #endif
 }
+
+// The square root of v >= 0 (or NaN): std::sqrt's value (IEEE's correctly rounded root),
+// without the library call that std::sqrt keeps for a negative argument to set errno, whose
+// stack frame every caller then pays for, hit or miss.
+inline float sqrt_nonneg(float v) {
+#if defined(__SSE__)
+    return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(v)));
+#else
+    return std::sqrt(v);
+#endif
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define JOSTLE_AVX2_PATHS 1
+// Eight floats side by side, for the AVX2 paths chosen at run time (a target attribute on the
+// function, never -march: it changes which instructions run, not the rounding; no FMA).
+using Float8 = float __attribute__((vector_size(32)));
+using Int8 = int __attribute__((vector_size(32)));
+inline bool has_avx2() {
+    static const bool yes = __builtin_cpu_supports("avx2");  // checked once
+    return yes;
+}
+// Bit i set when lane i of a comparison's result is true (VMOVMSKPS).
+[[gnu::target("avx2"), gnu::always_inline]] inline unsigned lane_bits8(Int8 m) {
+    return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(m)));
+}
+// Points or normals `first` to `first + 7` (x, y pairs) as x and y lanes in order: the 128-bit
+// halves regrouped (items 0, 1, 4, 5 and 2, 3, 6, 7), then x and y picked within each.
+[[gnu::target("avx2"), gnu::always_inline]] inline void load_xy8(const Vec2* v, Float8& x, Float8& y) {
+    Float8 lo, hi;
+    std::memcpy(&lo, v, sizeof lo);
+    std::memcpy(&hi, v + 4, sizeof hi);
+    const Float8 a = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 8, 9, 10, 11);
+    const Float8 b = __builtin_shufflevector(lo, hi, 4, 5, 6, 7, 12, 13, 14, 15);
+    x = __builtin_shufflevector(a, b, 0, 2, 8, 10, 4, 6, 12, 14);
+    y = __builtin_shufflevector(a, b, 1, 3, 9, 11, 5, 7, 13, 15);
+}
+// The largest lane of m in every lane (VMAXPS over the halves, pairs and neighbours); m must
+// hold no NaN.
+[[gnu::target("avx2"), gnu::always_inline]] inline Float8 max8(Float8 m) {
+    Float8 t = __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3);
+    m = t > m ? t : m;
+    t = __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5);
+    m = t > m ? t : m;
+    t = __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
+    return t > m ? t : m;
+}
+#endif
 
 // The next and previous index around a polygon of n vertices (i in [0, n)), without the
 // integer division that % costs.

@@ -170,8 +170,8 @@ using detail::Float4;
 // shuffles; a group may run past `count` into the storage's spare slots (every caller's arrays
 // have room for a whole group: a Polygon's 16 slots, a box's 4), whose lanes are masked off.
 // The gap test and the group's largest separation come from lane masks, not a branch per lane.
-FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int count, const Vec2* others,
-                                   int other_count) {
+[[gnu::noinline]] FaceSeparation max_face_separation_sse(const Vec2* points, const Vec2* normals, int count, const Vec2* others,
+                                       int other_count) {
     FaceSeparation best;
     for (int first = 0; first < count; first += 4) {
         Float4 n01, n23, p01, p23;
@@ -203,6 +203,57 @@ FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int 
     }
     return best;
 }
+
+#ifdef JOSTLE_AVX2_PATHS
+// The same with eight faces a group (AVX2, chosen at run time): a hexagon's faces are one
+// group instead of two. Every lane still does exactly the scalar arithmetic (a target
+// attribute changes which instructions run, not the rounding: no FMA, -ffp-contract=off), and
+// the first group with a gap and the first of tied faces are the same faces as above, so the
+// answers are the same bit for bit. Reads 8 slots a group: only for a Polygon's 16-slot arrays
+// (callers pass boxes, whose arrays have 4, to the SSE version).
+using detail::Float8;
+using detail::Int8;
+
+[[gnu::target("avx2")]] FaceSeparation max_face_separation_avx(const Vec2* points, const Vec2* normals, int count,
+                                                              const Vec2* others, int other_count) {
+    FaceSeparation best;
+    for (int first = 0; first < count; first += 8) {
+        Float8 nx, ny, px, py;
+        detail::load_xy8(normals + first, nx, ny);
+        detail::load_xy8(points + first, px, py);
+        Float8 s = nx * (others[0].x - px) + ny * (others[0].y - py);
+        for (int j = 1; j < other_count; ++j) {
+            const Float8 d = nx * (others[j].x - px) + ny * (others[j].y - py);
+            s = d < s ? d : s;
+        }
+        const Int8 live = Int8{0, 1, 2, 3, 4, 5, 6, 7} < count - first;  // the lanes holding faces
+        const unsigned gaps = detail::lane_bits8(live & ~(s <= 0.0f));  // > 0, or NaN past the limits
+        if (gaps != 0) {
+            const int lane = std::countr_zero(gaps);
+            return {s[lane], first + lane};
+        }
+        // The group's largest separation (a horizontal VMAXPS over the live lanes) and the
+        // first lane holding it.
+        const Float8 minus_inf = {-INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY};
+        const Float8 m = detail::max8(live ? s : minus_inf);
+        const int lane = std::countr_zero(detail::lane_bits8(live & (s == m)));
+        if (s[lane] > best.separation) best = {s[lane], first + lane};
+    }
+    return best;
+}
+
+// AVX2 for polygons of more than four faces when the CPU has it (checked once).
+FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int count, const Vec2* others,
+                                   int other_count) {
+    if (count > 4 && detail::has_avx2()) return max_face_separation_avx(points, normals, count, others, other_count);
+    return max_face_separation_sse(points, normals, count, others, other_count);
+}
+#else
+FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int count, const Vec2* others,
+                                   int other_count) {
+    return max_face_separation_sse(points, normals, count, others, other_count);
+}
+#endif
 
 // A convex polygon's vertices and outward normals as the pair code reads them: a Polygon's
 // own arrays, or a box's 4 corners built on the stack (no 16-slot Polygon to fill).
