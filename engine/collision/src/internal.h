@@ -114,10 +114,13 @@ inline float sqrt_nonneg(float v) {
 // function, never -march: it changes which instructions run, not the rounding; no FMA).
 using Float8 = float __attribute__((vector_size(32)));
 using Int8 = int __attribute__((vector_size(32)));
-inline bool has_avx2() {
-    static const bool yes = __builtin_cpu_supports("avx2");  // checked once
-    return yes;
+// Whether the AVX2 paths run: the CPU's answer, checked once; detail::use_avx2_paths lets
+// tests turn them off to compare against the SSE paths.
+inline bool& avx2_paths_on() {
+    static bool on = __builtin_cpu_supports("avx2");
+    return on;
 }
+inline bool has_avx2() { return avx2_paths_on(); }
 // Bit i set when lane i of a comparison's result is true (VMOVMSKPS).
 [[gnu::target("avx2"), gnu::always_inline]] inline unsigned lane_bits8(Int8 m) {
     return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(m)));

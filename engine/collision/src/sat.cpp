@@ -255,6 +255,20 @@ FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int 
 }
 #endif
 
+}  // namespace
+
+bool detail::use_avx2_paths(bool on) {
+#ifdef JOSTLE_AVX2_PATHS
+    detail::avx2_paths_on() = on && __builtin_cpu_supports("avx2");
+    return detail::avx2_paths_on();
+#else
+    (void)on;
+    return false;
+#endif
+}
+
+namespace {
+
 // A convex polygon's vertices and outward normals as the pair code reads them: a Polygon's
 // own arrays, or a box's 4 corners built on the stack (no 16-slot Polygon to fill).
 struct Convex {

@@ -486,6 +486,10 @@ MaskKernel best_mask_kernel();
 bool overlaps(const PlacedMask& a, const PlacedMask& b, MaskKernel k);
 std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k);
 int count_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k);
+// The polygon MTD takes faces eight at a time with AVX2 when the CPU has it (chosen at run
+// time; same answers bit for bit). For tests: switch that path off and on again (on only
+// where the CPU has AVX2); returns whether it is now on. Not thread-safe: tests only.
+bool use_avx2_paths(bool on);
 }  // namespace detail
 
 // ---------------------------------------------------------------------------------------
