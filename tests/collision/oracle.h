@@ -124,7 +124,8 @@ inline double dist_point_segment(D2 p, D2 a, D2 b) {
     return dlen(p - (a + t * ab));
 }
 
-// Signed distance from p to a convex polygon given in either winding (negative inside).
+// Signed distance from p to a convex polygon given in either winding (negative inside;
+// repeated vertices and zero area, as in degenerate boxes, are allowed).
 inline double signed_distance_convex(const std::vector<D2>& v, D2 p) {
     const std::size_t n = v.size();
     double area2 = 0;
@@ -138,13 +139,15 @@ inline double signed_distance_convex(const std::vector<D2>& v, D2 p) {
         const D2 b = v[(i + 1) % n];
         const D2 e = b - a;
         const double len = dlen(e);
+        outer = std::min(outer, dist_point_segment(p, a, b));
+        if (len == 0) continue;  // a repeated vertex (a degenerate box): no edge line
         // Outward offset of p from the edge's line.
         const double off = -orient * dcross(e, p - a) / len;
         if (off > 0) inside = false;
         inner = std::min(inner, -off);
-        outer = std::min(outer, dist_point_segment(p, a, b));
     }
-    return inside ? -inner : outer;
+    // A shape without area (a point or a segment as a box) has no inside.
+    return inside && area2 != 0 ? -inner : outer;
 }
 
 // Signed distance from p to any non-mask shape (segments and zero-area shapes: >= 0).

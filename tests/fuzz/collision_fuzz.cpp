@@ -338,9 +338,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     const Aabb box = bounds(a);
     if (all_finite(a) && !std::holds_alternative<PlacedMask>(a) && in_limits(a)) {
-        // The bounds contain the shape: every oracle vertex (or the circle's extremes).
+        // The bounds contain the shape: every oracle vertex (up to rounding).
+        const double tol = tolerance(test::shape_size(a), magnitude(a));
         for (const D2& v : test::vertices(a)) {
-            if (v.x < box.min.x - 1e-3 || v.x > box.max.x + 1e-3 || v.y < box.min.y - 1e-3 || v.y > box.max.y + 1e-3) {
+            if (v.x < box.min.x - tol || v.x > box.max.x + tol || v.y < box.min.y - tol || v.y > box.max.y + tol) {
                 fuzz_fail("bounds " + v2s(box.min) + " - " + v2s(box.max) + " leave out a vertex of " + test::describe(a));
             }
         }
