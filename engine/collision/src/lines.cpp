@@ -91,7 +91,12 @@ Vec2 closest_point_on(const Circle& c, Vec2 q) {
     const Vec2 d = c.center - q;
     const float len = length(d);
     if (!(len > 0.0f)) return c.center + Vec2{c.radius, 0.0f};
-    return q + ((len - c.radius) / len) * d;
+    if (std::isfinite(len)) return q + ((len - c.radius) / len) * d;
+    // |d| beyond about 1.8e19: its square overflows (inf / inf would be NaN). The same point,
+    // from d scaled down by its largest component.
+    const float m = std::fmax(std::fabs(d.x), std::fabs(d.y));
+    const Vec2 u{d.x / m, d.y / m};
+    return c.center - (c.radius / length(u)) * u;
 }
 
 namespace {
