@@ -56,8 +56,12 @@ struct PolygonAccess {
     static Vec2* normals(Polygon& p) { return p.normals_.data(); }
 };
 
-// A motion from `from` by `d` whose end is finite too (a sum can overflow to infinity).
-inline bool valid_motion(Vec2 from, Vec2 d) { return finite(from) && finite(d) && finite(from + d); }
+// A motion from `from` by `d` whose end is finite too (a sum can overflow to infinity), and
+// whose squared length is finite, as for a Segment (beyond |d| ~ 1.8e19, t = dot / dot(d, d)
+// would be inf / inf).
+inline bool valid_motion(Vec2 from, Vec2 d) {
+    return finite(from) && finite(d) && finite(from + d) && finite(dot(d, d));
+}
 
 // -0 becomes +0 (x + 0 is x for every other x): results print and hash the same whichever
 // way a zero component was reached.

@@ -100,7 +100,8 @@
 //   makes it hit nothing (a miss, all zeros), never undefined behaviour; closest_point then
 //   answers point {0, 0} at distance +infinity. So does a malformed shape (Aabb min > max,
 //   negative half extents or radius, the empty Polygon),
-//   and a cast or motion whose end (or a sweep whose contact point) overflows to infinity.
+//   and a cast or motion whose end or squared length (or a sweep whose contact point)
+//   overflows to infinity.
 //
 // LIMITS
 //   Polygon: 3..16 vertices (kMaxPolygonVertices). Mask: up to 4096 x 4096 pixels
