@@ -32,7 +32,9 @@ inline bool all_finite(float a, float b, float c, float d, float e) {
 inline bool valid(const Obb& b) {
     return all_finite(b.center.x, b.center.y, b.half.x, b.half.y, b.angle()) & (b.half.x >= 0.0f) & (b.half.y >= 0.0f);
 }
-inline bool valid(const Circle& c) { return all_finite(c.center.x, c.center.y, c.radius) & (c.radius >= 0.0f); }
+// r * r stands for r: it is finite exactly when r is and r^2 does not overflow (r up to about
+// 1.8e19), so no distance test compares inf with inf.
+inline bool valid(const Circle& c) { return all_finite(c.center.x, c.center.y, c.radius * c.radius) & (c.radius >= 0.0f); }
 inline bool valid(const Segment& s) { return finite(s.a) && finite(s.b) && finite(dot(s.b - s.a, s.b - s.a)); }
 // A Polygon is well formed by construction (its fields are private); only the empty one is
 // not a shape.

@@ -99,7 +99,8 @@
 //   coincident circle centres use normal {1, 0}. Any NaN or infinite coordinate in a shape
 //   makes it hit nothing (a miss, all zeros), never undefined behaviour; closest_point then
 //   answers point {0, 0} at distance +infinity. So does a malformed shape (Aabb min > max,
-//   negative half extents or radius, the empty Polygon),
+//   negative half extents or radius, a radius whose square overflows (above about 1.8e19),
+//   a box or segment whose size overflows, the empty Polygon),
 //   and a cast or motion whose end or squared length (or a sweep whose contact point)
 //   overflows to infinity.
 //
