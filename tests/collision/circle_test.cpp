@@ -330,6 +330,10 @@ TEST(CircleLimits, RadiusWhoseSquareOverflowsIsNoShape) {
     EXPECT_TRUE(is_miss(collide(Shape{Circle{{big, big}, big}}, Shape{box})));
     EXPECT_TRUE(is_miss(collide(Circle{{0, 0}, 2e19f}, Circle{{1, 0}, 1})));
     EXPECT_FALSE(overlaps(Shape{Circle{{0, 0}, 2e19f}}, Shape{box}));
+    // Circle pairs test squared distances themselves: an infinite centre or a distance whose
+    // square overflows is a miss even when r^2 overflows too (inf <= inf was a hit).
+    EXPECT_TRUE(is_miss(collide(Circle{{-INFINITY, -63999.5f}, 4000}, Circle{{63000.5f, 59000.5f}, 2.5940283e23f})));
+    EXPECT_TRUE(is_miss(collide(Circle{{4.2535296e37f, -24}, 4.643608e36f}, Circle{{-23.25f, 1}, 5.75f})));
     // 1e19 squares to 1e38: an ordinary (huge) circle.
     EXPECT_TRUE(collide(Shape{Circle{{0, 0}, 1e19f}}, Shape{box}).hit);
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "test_shapes.h"
 
@@ -209,6 +210,15 @@ TEST(ClosestPointCircle, FarBeyondTheSquaresRange) {
     EXPECT_FLOAT_EQ(neg.point.x, -2e25f);
     EXPECT_EQ(neg.point.y, 0.0f);
     EXPECT_GT(neg.distance, 1e25f);
+    // From the far side of float's range: c - q itself overflows.
+    const float big = std::numeric_limits<float>::max();
+    const ClosestPoint across = closest_point(Circle{{0, -1.7112253e38f}, 1}, {0, big});
+    EXPECT_EQ(across.point, (Vec2{0, -1.7112253e38f + 1}));
+    EXPECT_FALSE(std::isnan(across.distance));
+    // A segment seen from (FLT_MAX, FLT_MAX): the projection's terms were inf and -inf.
+    const ClosestPoint seg = closest_point(Shape{Segment{{-23.75f, 0}, {5.75f, -9.5f}}}, {big, big});
+    EXPECT_EQ(seg.point, (Vec2{5.75f, -9.5f}));
+    EXPECT_FALSE(std::isnan(seg.distance));
 }
 
 TEST(ClosestPointAabb, PushIn) {

@@ -238,6 +238,11 @@ void collide_properties(const Shape& a, const Shape& b) {
     if (overlaps(a, b) != m.hit) fuzz_fail("overlaps != collide().hit: " + describe_all(a, b, ""));
     if (!in_limits(a) || !in_limits(b) || !oracle_applies(a, b)) return;
     const double size = std::max(test::shape_size(a), test::shape_size(b));
+    // LIMITS: a shape below 1e-4 of the other's size or of their distance is a point to float.
+    const Aabb ba = bounds(a), bb = bounds(b);
+    const double distance = test::dlen(0.5 * (d2(ba.min) + d2(ba.max)) - 0.5 * (d2(bb.min) + d2(bb.max)));
+    const double smallest = std::min(test::shape_size(a), test::shape_size(b));
+    if (smallest > 0 && smallest < 1e-4 * std::max(size, distance)) return;
     const double tol = tolerance(size, std::max(magnitude(a), magnitude(b)));
     const double pen = test::penetration(a, b);
     const std::string ctx = describe_all(a, b, "hit " + std::to_string(m.hit) + " depth " + f2s(m.depth) + " normal " +
@@ -349,7 +354,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     const Vec2 q = frame.point(r);
     const ClosestPoint cp = closest_point(b, q);
-    if (std::isnan(cp.distance) || cp.distance < 0.0f) fuzz_fail("closest_point distance " + f2s(cp.distance) + " for " + test::describe(b));
+    if (std::isnan(cp.distance) || cp.distance < 0.0f || (cp.distance < INFINITY && !finite(cp.point))) {
+        fuzz_fail("closest_point " + v2s(q) + ": point " + v2s(cp.point) + " distance " + f2s(cp.distance) + " for " + test::describe(b));
+    }
 
     const Vec2 from = frame.point(r);
     const Vec2 to = frame.point(r);

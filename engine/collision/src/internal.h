@@ -132,7 +132,12 @@ inline float segment_param(Vec2 a, Vec2 b, Vec2 p) {
     const Vec2 d = b - a;
     const float dd = dot(d, d);
     if (!(dd > 0.0f)) return 0.0f;
-    return clamp(dot(p - a, d) / dd, 0.0f, 1.0f);
+    const float along = dot(p - a, d);
+    if (!std::isnan(along)) return clamp(along / dd, 0.0f, 1.0f);
+    // p so far from a (near +-FLT_MAX) that the dot product's terms overflow to inf and -inf:
+    // the same parameter in double, where they do not.
+    const double t = ((static_cast<double>(p.x) - a.x) * d.x + (static_cast<double>(p.y) - a.y) * d.y) / dd;
+    return t >= 1.0 ? 1.0f : t > 0.0 ? static_cast<float>(t) : 0.0f;
 }
 
 // p minus the closest point of segment a-b to p, formed from differences so that it keeps

@@ -92,10 +92,11 @@ Vec2 closest_point_on(const Circle& c, Vec2 q) {
     const float len = length(d);
     if (!(len > 0.0f)) return c.center + Vec2{c.radius, 0.0f};
     if (std::isfinite(len)) return q + ((len - c.radius) / len) * d;
-    // |d| beyond about 1.8e19: its square overflows (inf / inf would be NaN). The same point,
-    // from d scaled down by its largest component.
-    const float m = std::fmax(std::fabs(d.x), std::fabs(d.y));
-    const Vec2 u{d.x / m, d.y / m};
+    // |d| beyond about 1.8e19: its square overflows (inf / inf would be NaN), and d itself may
+    // (c and q near +-FLT_MAX). The same point from half of d, scaled by its largest component.
+    const Vec2 h{c.center.x * 0.5f - q.x * 0.5f, c.center.y * 0.5f - q.y * 0.5f};
+    const float m = std::fmax(std::fabs(h.x), std::fabs(h.y));
+    const Vec2 u{h.x / m, h.y / m};
     return c.center - (c.radius / length(u)) * u;
 }
 

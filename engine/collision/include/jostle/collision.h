@@ -108,7 +108,9 @@
 //   Polygon: 3..16 vertices (kMaxPolygonVertices). Mask: up to 4096 x 4096 pixels
 //   (kMaxMaskSide). Coordinates: keep |x|, |y| <= 1e5 px; floats then resolve 1/128 px, and
 //   depths and normals agree with a double-precision computation to about 1e-4 of the
-//   shapes' size. Beyond that, results stay defined but lose precision.
+//   shapes' size. Beyond that, results stay defined but lose precision. So they do for a
+//   shape smaller than about 1e-4 of the other's size or of their distance: to float it is a
+//   point up to rounding, and the normal may be a neighbouring feature's.
 // ==================================================================================
 #pragma once
 
