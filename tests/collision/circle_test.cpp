@@ -334,6 +334,8 @@ TEST(CircleLimits, RadiusWhoseSquareOverflowsIsNoShape) {
     // square overflows is a miss even when r^2 overflows too (inf <= inf was a hit).
     EXPECT_TRUE(is_miss(collide(Circle{{-INFINITY, -63999.5f}, 4000}, Circle{{63000.5f, 59000.5f}, 2.5940283e23f})));
     EXPECT_TRUE(is_miss(collide(Circle{{4.2535296e37f, -24}, 4.643608e36f}, Circle{{-23.25f, 1}, 5.75f})));
+    // Two radii of FLT_MAX: r1 + r2 was infinite, a hit of infinite depth.
+    EXPECT_TRUE(is_miss(collide(Circle{{-7.5f, -24}, big}, Circle{{-23.75f, -8.5f}, big})));
     // 1e19 squares to 1e38: an ordinary (huge) circle.
     EXPECT_TRUE(collide(Shape{Circle{{0, 0}, 1e19f}}, Shape{box}).hit);
 }

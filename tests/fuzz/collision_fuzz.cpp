@@ -150,7 +150,15 @@ std::string f2s(double v) {
     s << v;
     return s.str();
 }
-std::string v2s(Vec2 v) { return "(" + f2s(v.x) + ", " + f2s(v.y) + ")"; }
+std::string v2s(Vec2 v) {
+    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "(" + string.
+    std::string s = "(";
+    s += f2s(v.x);
+    s += ", ";
+    s += f2s(v.y);
+    s += ")";
+    return s;
+}
 
 bool finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 bool is_unit(Vec2 v) { return finite(v) && std::fabs(std::hypot(v.x, v.y) - 1.0f) <= 1e-4f; }
