@@ -99,8 +99,11 @@ inline unsigned lane_bits(Int4 m) {
 inline int next_index(int i, int n) { return i + 1 == n ? 0 : i + 1; }
 inline int prev_index(int i, int n) { return i == 0 ? n - 1 : i - 1; }
 
-// A hit with the given depth and A->B normal; depth is clamped at 0 against rounding.
+// A hit with the given depth and A->B normal; depth is clamped at 0 against rounding. Shapes
+// far beyond the manual's LIMITS can overflow a projection or a distance (two boxes with
+// half extents near FLT_MAX): a depth or normal that is not finite is no answer, so a miss.
 inline Manifold hit_with(float depth, Vec2 normal) {
+    if (!all_finite(depth, normal.x, normal.y)) return {};
     return Manifold{true, depth > 0.0f ? depth : 0.0f, plain_zeros(normal)};
 }
 
