@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "test_shapes.h"
@@ -353,6 +354,18 @@ TEST(SatSegment, ZeroLengthSegments) {
     EXPECT_EQ(q.depth, 0.0f);
     EXPECT_TRUE(test::is_unit(q.normal));
     EXPECT_TRUE(is_miss(collide(Segment{{1, 1}, {1, 1}}, Segment{{2, 1}, {2, 1}})));
+}
+
+TEST(SatLimits, ProjectionsBeyondFloatRangeAreAMiss) {
+    // Found by the collision fuzz target (tests/fuzz/regressions/collision/): two boxes with
+    // half extents of FLT_MAX; their projections overflow and SAT reported depth inf. A depth
+    // or normal that is not finite is no answer: a miss, all zeros.
+    const float big = std::numeric_limits<float>::max();
+    const Obb a{{big, big}, {big, 1e6f}, -24.0f};
+    const Obb b{{99928.25f, big}, {big, big}, -7.75f};
+    EXPECT_TRUE(is_miss(collide(a, b)));
+    EXPECT_TRUE(is_miss(collide(Shape{b}, Shape{a})));
+    EXPECT_FALSE(overlaps(Shape{a}, Shape{b}));
 }
 
 }  // namespace
