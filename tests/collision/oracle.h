@@ -193,7 +193,13 @@ inline std::string describe(const Shape& s) {
         const auto r = std::to_chars(buf, buf + sizeof buf, v);
         return std::string(buf, r.ptr);
     };
-    auto p = [&](Vec2 v) { return "(" + f(v.x) + ", " + f(v.y) + ")"; };
+    auto p = [&](Vec2 v) {
+        std::string t = "(";  // appended piece by piece: GCC 12 warns (-Wrestrict) on "(" + string
+        t += f(v.x);
+        t += ", ";
+        t += f(v.y);
+        return t + ")";
+    };
     if (const auto* a = std::get_if<Aabb>(&s)) out = "Aabb{" + p(a->min) + ", " + p(a->max) + "}";
     if (const auto* o = std::get_if<Obb>(&s)) out = "Obb{" + p(o->center) + ", " + p(o->half) + ", " + f(o->angle()) + "}";
     if (const auto* c = std::get_if<Circle>(&s)) out = "Circle{" + p(c->center) + ", " + f(c->radius) + "}";
