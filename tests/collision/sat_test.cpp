@@ -366,6 +366,12 @@ TEST(SatLimits, ProjectionsBeyondFloatRangeAreAMiss) {
     EXPECT_TRUE(is_miss(collide(a, b)));
     EXPECT_TRUE(is_miss(collide(Shape{b}, Shape{a})));
     EXPECT_FALSE(overlaps(Shape{a}, Shape{b}));
+    // Their contact points overflow even where the MTD does not: no contact set.
+    const Obb c{{big, big}, {big, 1e6f}, -16.0f};
+    const Obb d{{99928.25f, big}, {big, 1e6f}, -24.0f};
+    const ContactSet cs = contacts(c, d);
+    EXPECT_EQ(cs.count, 0);
+    EXPECT_TRUE(is_miss(cs.manifold));
 }
 
 }  // namespace
