@@ -280,6 +280,19 @@ TEST(CastThinWall, OnePixelWallAtVeryHighSpeedIsHit) {
     EXPECT_VEC_NEAR(back.normal, (Vec2{1, 0}), 1e-6f);
 }
 
+TEST(CastSegment, MotionWhoseSquaredLengthOverflowsIsAMiss) {
+    // Found by the collision fuzz target (tests/fuzz/regressions/collision/): a cast 1.7e38 long
+    // along a point segment's line; dot(r, r) overflowed and t = inf / inf was NaN, reported as
+    // a hit. A motion whose squared length overflows is no motion (as a Segment's is no shape).
+    const Segment dot_at_end{{-24, -24}, {-24, -24}};
+    EXPECT_TRUE(test::is_miss(cast({-1.70141183e38f, -24}, {-24, -24}, dot_at_end)));
+    EXPECT_TRUE(test::is_miss(cast({-1e20f, 0}, {0, 0}, Aabb{{-1, -1}, {1, 1}})));
+    // Just below the limit it is an ordinary cast.
+    const CastHit h = cast({-1e19f, 0}, {0, 0}, Aabb{{-1, -1}, {1, 1}});
+    EXPECT_TRUE(h.hit);
+    EXPECT_EQ(h.point.y, 0.0f);
+}
+
 TEST(CastShape, DispatchesToTheShape) {
     EXPECT_TRUE(is_cast(cast({-5, 0}, {5, 0}, Shape{kCircle}), 0.3f, {-2, 0}, {-1, 0}));
     EXPECT_TRUE(is_cast(cast({-2, 1}, {2, 1}, Shape{kBox}), 0.5f, {0, 1}, {-1, 0}));

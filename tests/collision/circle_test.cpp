@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -317,6 +318,26 @@ TEST(SegmentCircle, ZeroLengthSegmentAndZeroRadius) {
     EXPECT_TRUE(p.hit);
     EXPECT_EQ(p.depth, 0.0f);
     EXPECT_TRUE(test::is_unit(p.normal));
+}
+
+TEST(CircleLimits, RadiusWhoseSquareOverflowsIsNoShape) {
+    // Found by the collision fuzz target (tests/fuzz/regressions/collision/): a circle at
+    // FLT_MAX with radius FLT_MAX against a box: distance^2 and r^2 both overflowed, inf <= inf
+    // made it a hit, and the normal came out (0, 0). A radius whose square overflows (above
+    // about 1.8e19) is malformed, like a box whose size overflows: a miss, all zeros.
+    const float big = std::numeric_limits<float>::max();
+    const Aabb box{{-24, 0}, {-24, 1}};
+    EXPECT_TRUE(is_miss(collide(Shape{Circle{{big, big}, big}}, Shape{box})));
+    EXPECT_TRUE(is_miss(collide(Circle{{0, 0}, 2e19f}, Circle{{1, 0}, 1})));
+    EXPECT_FALSE(overlaps(Shape{Circle{{0, 0}, 2e19f}}, Shape{box}));
+    // Circle pairs test squared distances themselves: an infinite centre or a distance whose
+    // square overflows is a miss even when r^2 overflows too (inf <= inf was a hit).
+    EXPECT_TRUE(is_miss(collide(Circle{{-INFINITY, -63999.5f}, 4000}, Circle{{63000.5f, 59000.5f}, 2.5940283e23f})));
+    EXPECT_TRUE(is_miss(collide(Circle{{4.2535296e37f, -24}, 4.643608e36f}, Circle{{-23.25f, 1}, 5.75f})));
+    // Two radii of FLT_MAX: r1 + r2 was infinite, a hit of infinite depth.
+    EXPECT_TRUE(is_miss(collide(Circle{{-7.5f, -24}, big}, Circle{{-23.75f, -8.5f}, big})));
+    // 1e19 squares to 1e38: an ordinary (huge) circle.
+    EXPECT_TRUE(collide(Shape{Circle{{0, 0}, 1e19f}}, Shape{box}).hit);
 }
 
 }  // namespace

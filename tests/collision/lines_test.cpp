@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "test_shapes.h"
 
@@ -192,6 +193,36 @@ TEST(ClosestPointCircle, InTheClosedDisc) {
     const ClosestPoint on = closest_point(Circle{{0, 0}, 5}, {3, 4});
     EXPECT_VEC_NEAR(on.point, (Vec2{3, 4}), 1e-6f);
     EXPECT_NEAR(on.distance, 0.0f, 1e-6f);
+}
+
+TEST(ClosestPointCircle, FarBeyondTheSquaresRange) {
+    // Found by the collision fuzz target (tests/fuzz/regressions/collision/): the centre 3.3e27
+    // away from q; |d|^2 overflows, and (inf - r) / inf made the point and distance NaN. The
+    // point is r short of the centre toward q. (The distance is |q - p|, whose square
+    // overflows too: +infinity this far beyond the manual's LIMITS, never NaN.)
+    const ClosestPoint far = closest_point(Circle{{3.349782e27f, -13.75f}, 2}, {0, 0});
+    EXPECT_EQ(far.point.x, 3.349782e27f);  // 2 px is far below the rounding at 3e27
+    EXPECT_NEAR(far.point.y, -13.75f, 1e-3f);
+    EXPECT_FALSE(std::isnan(far.distance));
+    EXPECT_GT(far.distance, 1e27f);
+    // Toward negative x too: the scaled form keeps the direction (a radius up to ~1.8e19,
+    // whose square is finite; a larger one is malformed, "no point").
+    const ClosestPoint neg = closest_point(Circle{{-3e25f, 0}, 1e19f}, {0, 0});
+    EXPECT_EQ(neg.point.x, -3e25f + 1e19f);
+    EXPECT_EQ(neg.point.y, 0.0f);
+    EXPECT_GT(neg.distance, 1e25f);
+    const ClosestPoint malformed = closest_point(Circle{{-3e25f, 0}, 1e25f}, {0, 0});
+    EXPECT_EQ(malformed.point, (Vec2{0, 0}));
+    EXPECT_EQ(malformed.distance, INFINITY);
+    // From the far side of float's range: c - q itself overflows.
+    const float big = std::numeric_limits<float>::max();
+    const ClosestPoint across = closest_point(Circle{{0, -1.7112253e38f}, 1}, {0, big});
+    EXPECT_EQ(across.point, (Vec2{0, -1.7112253e38f + 1}));
+    EXPECT_FALSE(std::isnan(across.distance));
+    // A segment seen from (FLT_MAX, FLT_MAX): the projection's terms were inf and -inf.
+    const ClosestPoint seg = closest_point(Shape{Segment{{-23.75f, 0}, {5.75f, -9.5f}}}, {big, big});
+    EXPECT_EQ(seg.point, (Vec2{5.75f, -9.5f}));
+    EXPECT_FALSE(std::isnan(seg.distance));
 }
 
 TEST(ClosestPointAabb, PushIn) {

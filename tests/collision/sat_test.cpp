@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "test_shapes.h"
@@ -402,6 +403,24 @@ TEST(SatSegment, ZeroLengthSegments) {
     EXPECT_EQ(q.depth, 0.0f);
     EXPECT_TRUE(test::is_unit(q.normal));
     EXPECT_TRUE(is_miss(collide(Segment{{1, 1}, {1, 1}}, Segment{{2, 1}, {2, 1}})));
+}
+
+TEST(SatLimits, ProjectionsBeyondFloatRangeAreAMiss) {
+    // Found by the collision fuzz target (tests/fuzz/regressions/collision/): two boxes with
+    // half extents of FLT_MAX; their projections overflow and SAT reported depth inf. A depth
+    // or normal that is not finite is no answer: a miss, all zeros.
+    const float big = std::numeric_limits<float>::max();
+    const Obb a{{big, big}, {big, 1e6f}, -24.0f};
+    const Obb b{{99928.25f, big}, {big, big}, -7.75f};
+    EXPECT_TRUE(is_miss(collide(a, b)));
+    EXPECT_TRUE(is_miss(collide(Shape{b}, Shape{a})));
+    EXPECT_FALSE(overlaps(Shape{a}, Shape{b}));
+    // Their contact points overflow even where the MTD does not: no contact set.
+    const Obb c{{big, big}, {big, 1e6f}, -16.0f};
+    const Obb d{{99928.25f, big}, {big, 1e6f}, -24.0f};
+    const ContactSet cs = contacts(c, d);
+    EXPECT_EQ(cs.count, 0);
+    EXPECT_TRUE(is_miss(cs.manifold));
 }
 
 }  // namespace

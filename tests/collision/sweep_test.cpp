@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "test_shapes.h"
 
@@ -285,6 +286,17 @@ TEST(SweepShape, RelativeMotion) {
     // A static segment through the generic entry.
     EXPECT_TRUE(is_sweep(sweep(Circle{{-5, 0}, 0.5f}, {10, 0}, Shape{Segment{{0, -1}, {0, 1}}}, {0, 0}), 0.45f,
                          {0, 0}, {1, 0}));
+}
+
+TEST(SweepShape, ContactPointBeyondFloatRangeIsAMiss) {
+    // Found by the collision fuzz target (tests/fuzz/regressions/collision/): a circle at
+    // FLT_MAX with radius FLT_MAX already overlaps the triangle; its contact point, centre +
+    // r * normal, is (inf, inf). A result is finite or a miss, so this is a miss.
+    const float big = std::numeric_limits<float>::max();
+    const Polygon tri = test::polygon_or_die({{1, 0}, {-0.5f, 0.8660254f}, {-0.5f, -0.8660254f}});
+    EXPECT_TRUE(is_miss(sweep(Circle{{big, big}, big}, {1, 16}, Shape{tri}, {0, 0})));
+    // An ordinary circle moving into the triangle still hits.
+    EXPECT_TRUE(sweep(Circle{{-3, 0}, 1}, {4, 0}, Shape{tri}, {0, 0}).hit);
 }
 
 }  // namespace

@@ -16,13 +16,16 @@ using detail::valid;
 
 Manifold collide(const Circle& a, const Circle& b) {
     // 09-71: compare squared distances, so no square root for a miss. Only the radii are
-    // checked up front: a NaN or infinite centre makes dist2 NaN or infinite, which the
-    // comparison below already turns into a miss.
-    if (!(a.radius >= 0.0f && a.radius < INFINITY && b.radius >= 0.0f && b.radius < INFINITY)) return {};
+    // checked up front (as valid(Circle) does: r >= 0 and r^2 finite, so r1 + r2 is finite
+    // and so is the depth): a NaN or infinite centre makes dist2 NaN or infinite, which the
+    // comparison below turns into a miss (an infinite dist2 explicitly).
+    if (!(a.radius >= 0.0f && a.radius * a.radius < INFINITY && b.radius >= 0.0f && b.radius * b.radius < INFINITY)) {
+        return {};
+    }
     const Vec2 d = b.center - a.center;
     const float dist2 = dot(d, d);
     const float r = a.radius + b.radius;
-    if (!(dist2 <= r * r)) return {};
+    if (!(dist2 <= r * r) || dist2 == INFINITY) return {};
     // 09-72: mtd = (c1 - c2)/|c1 - c2| (r1 + r2 - |c1 - c2|) = -depth * normal. Coincident
     // centres have no direction; {1, 0} is the defined one (as in Box2D).
     const float len = detail::sqrt_nonneg(dist2);  // one square root for the depth and the normal

@@ -36,7 +36,9 @@ inline bool all_finite(float a, float b, float c, float d, float e) {
 inline bool valid(const Obb& b) {
     return all_finite(b.center.x, b.center.y, b.half.x, b.half.y, b.angle()) & (b.half.x >= 0.0f) & (b.half.y >= 0.0f);
 }
-inline bool valid(const Circle& c) { return all_finite(c.center.x, c.center.y, c.radius) & (c.radius >= 0.0f); }
+// r * r stands for r: it is finite exactly when r is and r^2 does not overflow (r up to about
+// 1.8e19), so no distance test compares inf with inf.
+inline bool valid(const Circle& c) { return all_finite(c.center.x, c.center.y, c.radius * c.radius) & (c.radius >= 0.0f); }
 inline bool valid(const Segment& s) { return finite(s.a) && finite(s.b) && finite(dot(s.b - s.a, s.b - s.a)); }
 // A Polygon is well formed by construction (its fields are private); only the empty one is
 // not a shape.
@@ -60,11 +62,14 @@ struct PolygonAccess {
     static Vec2* normals(Polygon& p) { return p.normals_.data(); }
 };
 
-// A motion from `from` by `d` whose end is finite too (a sum can overflow to infinity).
-// One test of the six values' x - x (see all_finite), not a branch for each.
+// A motion from `from` by `d` whose end is finite too (a sum can overflow to infinity), and
+// whose squared length is finite, as for a Segment (beyond |d| ~ 1.8e19, t = dot / dot(d, d)
+// would be inf / inf). One test of the values' x - x (see all_finite), not a branch for each.
 inline bool valid_motion(Vec2 from, Vec2 d) {
     const Vec2 end = from + d;
-    return ((from.x - from.x) + (from.y - from.y)) + ((d.x - d.x) + (d.y - d.y)) + ((end.x - end.x) + (end.y - end.y)) ==
+    const float dd = dot(d, d);
+    return ((from.x - from.x) + (from.y - from.y)) + ((d.x - d.x) + (d.y - d.y)) +
+               ((end.x - end.x) + (end.y - end.y)) + (dd - dd) ==
            0.0f;
 }
 
@@ -153,8 +158,11 @@ inline bool has_avx2() { return avx2_paths_on(); }
 inline int next_index(int i, int n) { return i + 1 == n ? 0 : i + 1; }
 inline int prev_index(int i, int n) { return i == 0 ? n - 1 : i - 1; }
 
-// A hit with the given depth and A->B normal; depth is clamped at 0 against rounding.
+// A hit with the given depth and A->B normal; depth is clamped at 0 against rounding. Shapes
+// far beyond the manual's LIMITS can overflow a projection or a distance (two boxes with
+// half extents near FLT_MAX): a depth or normal that is not finite is no answer, so a miss.
 inline Manifold hit_with(float depth, Vec2 normal) {
+    if (!all_finite(depth, normal.x, normal.y)) return {};
     return Manifold{true, depth > 0.0f ? depth : 0.0f, plain_zeros(normal)};
 }
 
@@ -186,7 +194,12 @@ inline float segment_param(Vec2 a, Vec2 b, Vec2 p) {
     const Vec2 d = b - a;
     const float dd = dot(d, d);
     if (!(dd > 0.0f)) return 0.0f;
-    return clamp(dot(p - a, d) / dd, 0.0f, 1.0f);
+    const float along = dot(p - a, d);
+    if (!std::isnan(along)) return clamp(along / dd, 0.0f, 1.0f);
+    // p so far from a (near +-FLT_MAX) that the dot product's terms overflow to inf and -inf:
+    // the same parameter in double, where they do not.
+    const double t = ((static_cast<double>(p.x) - a.x) * d.x + (static_cast<double>(p.y) - a.y) * d.y) / dd;
+    return t >= 1.0 ? 1.0f : t > 0.0 ? static_cast<float>(t) : 0.0f;
 }
 
 // p minus the closest point of segment a-b to p, formed from differences so that it keeps

@@ -91,11 +91,24 @@ Vec2 closest_point_on(const Circle& c, Vec2 q) {
     const Vec2 d = c.center - q;
     const float len = length(d);
     if (!(len > 0.0f)) return c.center + Vec2{c.radius, 0.0f};
-    return q + ((len - c.radius) / len) * d;
+    if (std::isfinite(len)) return q + ((len - c.radius) / len) * d;
+    // |d| beyond about 1.8e19: its square overflows (inf / inf would be NaN), and d itself may
+    // (c and q near +-FLT_MAX). The same point from half of d, scaled by its largest component.
+    const Vec2 h{c.center.x * 0.5f - q.x * 0.5f, c.center.y * 0.5f - q.y * 0.5f};
+    const float m = std::fmax(std::fabs(h.x), std::fabs(h.y));
+    const Vec2 u{h.x / m, h.y / m};
+    return c.center - (c.radius / length(u)) * u;
 }
 
 namespace {
 constexpr ClosestPoint kNoClosestPoint{{0.0f, 0.0f}, INFINITY};
+
+// Far past the manual's LIMITS (a query point and a shape near opposite ends of float's
+// range) a difference overflows and the answer would hold NaN or an infinite point: that is
+// no answer, the same as for a non-finite input. An infinite distance alone is kept.
+ClosestPoint defined(ClosestPoint c) {
+    return finite(c.point) && !std::isnan(c.distance) ? c : kNoClosestPoint;
+}
 
 ClosestPoint closest_in_box(Vec2 lo, Vec2 hi, Vec2 q) {
     // 09-102: "push in" the point along each axis.
@@ -106,7 +119,7 @@ ClosestPoint closest_in_box(Vec2 lo, Vec2 hi, Vec2 q) {
 
 ClosestPoint closest_point(const Aabb& box, Vec2 q) {
     if (!valid(box) || !finite(q)) return kNoClosestPoint;
-    return closest_in_box(box.min, box.max, q);
+    return defined(closest_in_box(box.min, box.max, q));
 }
 
 ClosestPoint closest_point(const Obb& box, Vec2 q) {
@@ -114,7 +127,7 @@ ClosestPoint closest_point(const Obb& box, Vec2 q) {
     const Rot r = box.rotation();
     const ClosestPoint local = closest_in_box(-box.half, box.half, inv_rotate(r, q - box.center));
     if (local.distance == 0.0f) return {q, 0.0f};
-    return {rotate(r, local.point) + box.center, local.distance};
+    return defined({rotate(r, local.point) + box.center, local.distance});
 }
 
 bool contains(const Polygon& poly, Vec2 q) {
@@ -137,14 +150,14 @@ ClosestPoint closest_point(const Polygon& poly, Vec2 q) {
     if (contains(poly, q)) return {q, 0.0f};
     int edge = 0;
     const Vec2 offset = detail::offset_from_boundary(poly, q, &edge);
-    return {q - offset, length(offset)};
+    return defined({q - offset, length(offset)});
 }
 
 ClosestPoint closest_point(const Circle& c, Vec2 q) {
     if (!valid(c) || !finite(q)) return kNoClosestPoint;
     if (length_squared(q - c.center) <= c.radius * c.radius) return {q, 0.0f};
     const Vec2 p = closest_point_on(c, q);
-    return {p, length(q - p)};
+    return defined({p, length(q - p)});
 }
 
 ClosestPoint closest_point(const Shape& s, Vec2 q) {
@@ -153,7 +166,7 @@ ClosestPoint closest_point(const Shape& s, Vec2 q) {
             using T = std::decay_t<decltype(shape)>;
             if constexpr (std::is_same_v<T, Segment>) {
                 if (!valid(shape) || !finite(q)) return kNoClosestPoint;
-                return {closest_point(shape, q), length(detail::offset_from_segment(shape.a, shape.b, q))};
+                return defined({closest_point(shape, q), length(detail::offset_from_segment(shape.a, shape.b, q))});
             } else {
                 return closest_point(shape, q);
             }

@@ -390,11 +390,21 @@ ContactSet contacts_of(const PolygonContact& pc, Convex a, Convex b, Vec2 offset
     c.manifold = pc.manifold;
     return c;
 }
+
+// Past float's range (boxes with half extents near FLT_MAX) a clipped point can overflow even
+// when the MTD did not: a contact set with a point or depth that is not finite is a miss.
+ContactSet finite_or_miss(const ContactSet& c) {
+    for (int k = 0; k < c.count; ++k) {
+        const std::size_t i = static_cast<std::size_t>(k);
+        if (!detail::finite(c.points[i]) || !detail::finite(c.depths[i])) return {};
+    }
+    return c;
+}
 }  // namespace
 
 ContactSet contacts(const Polygon& a, const Polygon& b) {
     if (!valid(a) || !valid(b)) return {};
-    return contacts_of(polygon_polygon(convex(a), convex(b), {}), convex(a), convex(b), {});
+    return finite_or_miss(contacts_of(polygon_polygon(convex(a), convex(b), {}), convex(a), convex(b), {}));
 }
 
 ContactSet contacts(const Obb& a, const Obb& b) {
@@ -411,7 +421,7 @@ ContactSet contacts(const Obb& a, const Obb& b) {
     const CentredBox box_a(a), box_b(b);
     ContactSet c = contacts_of(PolygonContact{bb.manifold, a_face, face}, box_a.view(), box_b.view(), d);
     for (int k = 0; k < c.count; ++k) c.points[static_cast<std::size_t>(k)] += a.center;
-    return c;
+    return finite_or_miss(c);
 }
 
 Manifold collide(const Obb& a, const Obb& b) {

@@ -58,7 +58,19 @@ bool moving_into(Vec2 v, Vec2 n) {
 // unit normal n (from the circle toward the other shape).
 SweepHit contact_at(Vec2 c, Vec2 v, float r, float t, Vec2 n) {
     const Vec2 clean = detail::plain_zeros(n);
-    return {true, t + 0.0f, detail::plain_zeros(c + t * v + r * clean), clean};
+    const Vec2 point = c + t * v + r * clean;
+    // A contact point beyond float's range (a circle near FLT_MAX) is no hit, as a motion whose
+    // end overflows is none: results are finite or a miss.
+    if (!detail::finite(point)) return {};
+    return {true, t + 0.0f, detail::plain_zeros(point), clean};
+}
+
+// The contact point moved with B to where B is at time t (relative motion); a miss if that
+// point leaves float's range.
+SweepHit moved_with_b(SweepHit h, Vec2 vb) {
+    if (!h.hit) return h;
+    h.point += h.t * vb;
+    return detail::finite(h.point) ? h : SweepHit{};
 }
 
 // Shapes already touching or overlapping at t = 0: a contact at t = 0 only while A moves into
@@ -228,9 +240,7 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Circle& fixed) {
 SweepHit sweep(const Circle& a, Vec2 va, const Circle& b, Vec2 vb) {
     // 09-126/127: in B's frame of reference A moves by va - vb and B stands still.
     if (!detail::finite(va) || !detail::finite(vb)) return {};
-    SweepHit h = sweep(a, va - vb, b);
-    if (h.hit) h.point += h.t * vb;
-    return h;
+    return moved_with_b(sweep(a, va - vb, b), vb);
 }
 
 SweptCapsule swept_capsule(const Circle& c, Vec2 v) {
@@ -341,9 +351,7 @@ SweepHit sweep(const Circle& a, Vec2 va, const Shape& b, Vec2 vb) {
     // Relative motion: B stands still and A moves by va - vb; the contact point then moves
     // with B to where B is at time t.
     if (!detail::finite(va) || !detail::finite(vb)) return {};
-    SweepHit h = std::visit([&](const auto& shape) { return sweep(a, va - vb, shape); }, b);
-    if (h.hit) h.point += h.t * vb;
-    return h;
+    return moved_with_b(std::visit([&](const auto& shape) { return sweep(a, va - vb, shape); }, b), vb);
 }
 
 }  // namespace jostle

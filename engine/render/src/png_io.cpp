@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 
@@ -65,6 +66,18 @@ struct PngRead {
     }
 };
 
+// libpng's allocations while reading. It allocates an ancillary chunk's declared length (up
+// to 2 GiB) before reading the chunk, even past its own chunk limit, so a 100-byte file could
+// make it ask for gigabytes (found by tests/fuzz/png_fuzz.cpp). Its real needs are rows
+// (16384 px * 8 bytes), zlib's state and small chunks; a request above 16 MiB is refused, which
+// libpng handles as a chunk it cannot keep (the file then fails as truncated or corrupt). The
+// pixels themselves are jostle's own allocation, bounded by kMaxImagePixels.
+constexpr png_alloc_size_t kMaxLibpngAllocation = png_alloc_size_t{16} << 20;
+png_voidp bounded_malloc(png_structp, png_alloc_size_t size) {
+    return size <= kMaxLibpngAllocation ? std::malloc(size) : nullptr;
+}
+void bounded_free(png_structp, png_voidp p) { std::free(p); }
+
 // Read callback: tells a truncated file from a failed read.
 void read_bytes(png_structp png, png_bytep data, png_size_t length) {
     auto* r = static_cast<PngRead*>(png_get_io_ptr(png));
@@ -88,6 +101,8 @@ bool read_png_header(PngRead& r, png_uint_32* width, png_uint_32* height) {
     // libpng's own size limit (1e6 per side by default) would fail inside png_read_info with
     // a less useful message; read_png checks kMaxImageSide itself right after this.
     png_set_user_limits(r.png, 0x7fffffffU, 0x7fffffffU);
+    // Text and colour-profile chunks inflate to at most this much (libpng's own bound is none).
+    png_set_chunk_malloc_max(r.png, kMaxLibpngAllocation);
     png_read_info(r.png, r.info);
     *width = png_get_image_width(r.png, r.info);
     *height = png_get_image_height(r.png, r.info);
@@ -168,7 +183,8 @@ bool write_png_data(PngWrite& w, std::vector<std::uint8_t>* out, png_bytep* rows
 // Reads the header and the pixels of the PNG whose signature `r` has just consumed; `name`
 // (a path, or what the bytes are) goes into the error messages.
 Image decode_after_signature(PngRead& r, const std::string& name) {
-    r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r.status, on_png_error, on_png_warning);
+    r.png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, &r.status, on_png_error, on_png_warning, nullptr,
+                                     bounded_malloc, bounded_free);
     if (r.png != nullptr) r.info = png_create_info_struct(r.png);
     if (r.png == nullptr || r.info == nullptr) fail(name, "cannot read: out of memory");
 

@@ -99,14 +99,18 @@
 //   coincident circle centres use normal {1, 0}. Any NaN or infinite coordinate in a shape
 //   makes it hit nothing (a miss, all zeros), never undefined behaviour; closest_point then
 //   answers point {0, 0} at distance +infinity. So does a malformed shape (Aabb min > max,
-//   negative half extents or radius, the empty Polygon),
-//   and a cast or motion whose end overflows to infinity.
+//   negative half extents or radius, a radius whose square overflows (above about 1.8e19),
+//   a box or segment whose size overflows, the empty Polygon),
+//   and a cast or motion whose end or squared length (or a sweep whose contact point)
+//   overflows to infinity.
 //
 // LIMITS
 //   Polygon: 3..16 vertices (kMaxPolygonVertices). Mask: up to 4096 x 4096 pixels
 //   (kMaxMaskSide). Coordinates: keep |x|, |y| <= 1e5 px; floats then resolve 1/128 px, and
 //   depths and normals agree with a double-precision computation to about 1e-4 of the
-//   shapes' size. Beyond that, results stay defined but lose precision.
+//   shapes' size. Beyond that, results stay defined but lose precision. So they do for a
+//   shape smaller than about 1e-4 of the other's size or of their distance: to float it is a
+//   point up to rounding, and the normal may be a neighbouring feature's.
 // ==================================================================================
 #pragma once
 
