@@ -1,12 +1,14 @@
 // run_jostle.h: runs the built jostle program (JOSTLE_BINARY), or another program, for the
 // end-to-end tests, with stdin from a file and an optional working folder, collecting its exit
 // status, stdout and stderr (both pipes polled, so neither can fill up and block the child).
-// The interruption tests also have it send SIGINT a given time after the start.
+// The interruption tests also have it send SIGINT a given time after the start; the hostile-input
+// tests give it a file-size limit (a full disk: writes beyond it fail with EFBIG).
 #pragma once
 
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -32,10 +34,11 @@ struct RunResult {
     std::string err;
 };
 
-// Runs `program` (a path) with `args`.
+// Runs `program` (a path) with `args`. With file_size_limit >= 0 the program runs under that
+// RLIMIT_FSIZE with SIGXFSZ ignored, so a write past the limit fails with EFBIG as on a full disk.
 inline RunResult run_program(const std::string& program, const std::vector<std::string>& args,
                              const std::string& stdin_path = "/dev/null", const std::string& cwd = "",
-                             int sigint_after_ms = -1) {
+                             int sigint_after_ms = -1, long long file_size_limit = -1) {
     RunResult result;
     int out_pipe[2];
     int err_pipe[2];
@@ -57,8 +60,23 @@ inline RunResult run_program(const std::string& program, const std::vector<std::
     for (std::string& s : argv_strings) argv.push_back(s.data());
     argv.push_back(nullptr);
 
+    // The child inherits the limit and the ignored signal; this process has them only while
+    // it spawns (it writes nothing meanwhile).
+    rlimit saved_limit{};
+    void (*saved_handler)(int) = SIG_DFL;
+    if (file_size_limit >= 0) {
+        getrlimit(RLIMIT_FSIZE, &saved_limit);
+        rlimit limit = saved_limit;
+        limit.rlim_cur = static_cast<rlim_t>(file_size_limit);
+        saved_handler = signal(SIGXFSZ, SIG_IGN);
+        if (setrlimit(RLIMIT_FSIZE, &limit) != 0) ADD_FAILURE() << "setrlimit(RLIMIT_FSIZE) failed";
+    }
     pid_t pid = 0;
     const int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+    if (file_size_limit >= 0) {
+        setrlimit(RLIMIT_FSIZE, &saved_limit);
+        signal(SIGXFSZ, saved_handler);
+    }
     posix_spawn_file_actions_destroy(&actions);
     close(out_pipe[1]);
     close(err_pipe[1]);
@@ -115,8 +133,8 @@ inline RunResult run_program(const std::string& program, const std::vector<std::
 
 // Runs the built jostle program.
 inline RunResult run_jostle_binary(const std::vector<std::string>& args, const std::string& stdin_path = "/dev/null",
-                                   const std::string& cwd = "", int sigint_after_ms = -1) {
-    return run_program(JOSTLE_BINARY, args, stdin_path, cwd, sigint_after_ms);
+                                   const std::string& cwd = "", int sigint_after_ms = -1, long long file_size_limit = -1) {
+    return run_program(JOSTLE_BINARY, args, stdin_path, cwd, sigint_after_ms, file_size_limit);
 }
 
 }  // namespace jostle::test

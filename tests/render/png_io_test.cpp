@@ -160,7 +160,7 @@ TEST_F(WritePng, MissingFolderIsAnErrorNamingThePath) {
         write_png_atomic(path, pattern_image(2, 2, 3));
         FAIL() << "no error";
     } catch (const InputError& e) {
-        EXPECT_THAT(e.what(), StartsWith(path + ": cannot write: cannot create temporary file "));
+        EXPECT_THAT(e.what(), StartsWith(path + ": cannot write: cannot create a file in "));
     }
     EXPECT_TRUE(files().empty());
 }

@@ -30,12 +30,14 @@ std::vector<ScriptStep> parse_input_script(std::string_view text, const std::str
     std::vector<ScriptStep> steps;
     int line_number = 0;
     std::size_t at = 0;
+    text = skip_utf8_bom(text);
     while (at < text.size()) {
         std::size_t end = text.find('\n', at);
         if (end == std::string_view::npos) end = text.size();
         const std::string_view line = text.substr(at, end - at);
         at = end + 1;
         ++line_number;
+        check_text_line(line, source, line_number);
         const std::vector<Word> words = split_words(line);
         if (words.empty()) continue;
         auto fail = [&](int column, const std::string& what) -> void {
