@@ -41,7 +41,8 @@ struct Rules {
 // InputError naming the level and the tick.
 inline constexpr int kMaxEntities = 20000;
 
-// The arena game, reading levels from `assets_dir`/levels/NAME.level.
+// The arena game, reading levels from `assets_dir`/levels/NAME.level (InputError when that
+// folder cannot be listed: a wrong --assets).
 class ArenaGame : public Game {
 public:
     explicit ArenaGame(std::string assets_dir, Rules rules = {});
