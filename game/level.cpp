@@ -28,7 +28,7 @@ public:
     }
     // A coordinate or a length: |v| <= kMaxCoordinate (the collision module's precision limit).
     float coordinate(std::size_t i) const { return number(i, kMaxCoordinate, "a coordinate from -1e5 to 1e5"); }
-    // Anything else (an angle, a speed): |v| <= 1e6.
+    // Anything else (an angle): |v| <= 1e6.
     float number(std::size_t i, float limit = 1e6f, const char* what = "a number from -1e6 to 1e6") const {
         const Word& w = words_[i];
         float value = 0.0f;
@@ -38,7 +38,7 @@ public:
         }
         return value;
     }
-    // A positive length (a radius, a width): 0 < v <= kMaxCoordinate.
+    // A positive length or speed (a radius, a width, px/s): 0 < v <= kMaxCoordinate.
     float positive(std::size_t i, const char* what) const {
         const float v = coordinate(i);
         if (!(v > 0.0f)) fail(words_[i].column, std::string("expected a positive ") + what + ", got '" + std::string(words_[i].text) + "'");

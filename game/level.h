@@ -19,8 +19,8 @@
 //
 // '#' starts a comment; blank lines are ignored. Names are unique. Errors name the file, the
 // line and what was expected. A UTF-8 byte order mark and CRLF line ends are accepted.
-// Limits: every coordinate and length within +-1e5 (kMaxCoordinate), other numbers (angles,
-// speeds) within +-1e6; at most kMaxLevelThings things; polygons of 3 to 16 vertices; lines
+// Limits: every coordinate, length and speed within +-1e5 (kMaxCoordinate), angles within
+// +-1e6, mass <= 1000; at most kMaxLevelThings things; polygons of 3 to 16 vertices; lines
 // and words as in jostle/core/text.h (kMaxLineBytes, kMaxWordBytes).
 #pragma once
 
