@@ -97,7 +97,7 @@ void AtomicFile::commit() {
     }
     if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
         const int e = errno;
-        fail("cannot rename " + temp_path_ + " to it: " + std::strerror(e));
+        fail(e == EISDIR ? std::string("it is a folder") : "cannot put the finished file in its place: " + std::string(std::strerror(e)));
     }
     committed_ = true;
 }
