@@ -5,10 +5,8 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
-#include <sstream>
 
 #include "jostle/core/error.h"
 #include "jostle/core/text.h"
@@ -34,13 +32,7 @@ enum GameEvent : int {
 };
 constexpr const char* kVariableNames[] = {"score", "shots", "balls", "fastest", "touches"};
 
-std::string read_file(const std::string& path, const char* what = "the level file") {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(SourceLocation{path, 0, 0}, std::string("cannot open ") + what);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
+std::string read_file(const std::string& path, const char* what = "the level file") { return read_text_file(path, what); }
 
 // The sprite files (assets/sprites/*.png), by name, sorted.
 std::vector<std::string> sprite_names(const std::string& assets_dir) {
@@ -102,7 +94,7 @@ class ArenaSimulation : public Simulation {
 public:
     ArenaSimulation(const Level& level, const std::string& level_path, Sprites sprites, const Rules& rules,
                     std::uint64_t seed, int tick_rate)
-        : level_(level), sprites_(std::move(sprites)), rules_(rules),
+        : level_(level), level_path_(level_path), sprites_(std::move(sprites)), rules_(rules),
           world_(WorldDesc{.gravity = {0.0f, 0.0f}, .seed = seed}), dt_(1.0f / static_cast<float>(tick_rate)) {
         // The ship: a triangle pointing along +x.
         const Vec2 ship[] = {{14.0f, 0.0f}, {-10.0f, -9.0f}, {-10.0f, 9.0f}};
@@ -328,6 +320,11 @@ public:
 
 private:
     std::size_t add(Thing thing, EntityDesc desc) {
+        if (world_.entity_count() >= static_cast<std::size_t>(kMaxEntities)) {
+            throw InputError(SourceLocation{level_path_, 0, 0},
+                             "tick " + std::to_string(ticks_) + ": the world would hold more than " +
+                                 std::to_string(kMaxEntities) + " entities (the limit; too many cannons firing too often?)");
+        }
         thing.serial = next_serial_++;
         desc.user_data = thing.serial;
         thing.id = world_.create(desc);
@@ -485,6 +482,7 @@ private:
     }
 
     Level level_;
+    std::string level_path_;  // for messages
     Sprites sprites_;
     Rules rules_;
     World world_;
@@ -517,6 +515,12 @@ ArenaGame::ArenaGame(std::string assets_dir, Rules rules) : assets_dir_(std::mov
     for (const auto& entry : std::filesystem::directory_iterator(assets_dir_ + "/levels", ec)) {
         if (entry.path().extension() == ".level") vocabulary_.levels.push_back(entry.path().stem().string());
     }
+    // Without it every level would be "unknown (expected one of: )": say what is wrong instead.
+    if (ec) {
+        throw InputError(SourceLocation{assets_dir_ + "/levels", 0, 0},
+                         "cannot list the levels: " + ec.message() +
+                             " (expected the assets folder's levels/NAME.level files; --assets or $JOSTLE_ASSETS says where it is)");
+    }
     std::sort(vocabulary_.levels.begin(), vocabulary_.levels.end());
 }
 
@@ -538,7 +542,17 @@ std::unique_ptr<Simulation> ArenaGame::start(const std::string& level, std::uint
     Level parsed = parse_level(read_file(path), path, level);
     Sprites sprites;
     for (const std::string& name : sprite_names(assets_dir_)) {
-        sprites.images[name] = read_png(assets_dir_ + "/sprites/" + name + ".png");
+        const std::string sprite_path = assets_dir_ + "/sprites/" + name + ".png";
+        Image image = read_png(sprite_path);
+        // A sprite goes into the renderer's atlas and may be a collision mask (props, blobs).
+        static_assert(kMaxSpriteSide <= kMaxMaskSide);
+        if (image.width > kMaxSpriteSide || image.height > kMaxSpriteSide) {
+            throw InputError(SourceLocation{sprite_path, 0, 0},
+                             "image is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                                 " pixels; a sprite is at most " + std::to_string(kMaxSpriteSide) + " x " +
+                                 std::to_string(kMaxSpriteSide));
+        }
+        sprites.images[name] = std::move(image);
     }
     return std::make_unique<ArenaSimulation>(parsed, path, std::move(sprites), rules_, seed, tick_rate);
 }

@@ -36,7 +36,13 @@ struct Rules {
     int rock_hit_score = 1;
 };
 
-// The arena game, reading levels from `assets_dir`/levels/NAME.level.
+// Entities alive in one arena at once (the level's things, the ship, bullets, cannon balls).
+// A run that would go beyond it (cannons firing faster than their balls expire) stops with an
+// InputError naming the level and the tick.
+inline constexpr int kMaxEntities = 20000;
+
+// The arena game, reading levels from `assets_dir`/levels/NAME.level (InputError when that
+// folder cannot be listed: a wrong --assets).
 class ArenaGame : public Game {
 public:
     explicit ArenaGame(std::string assets_dir, Rules rules = {});

@@ -26,17 +26,21 @@ public:
                  std::string("expected '") + form + "'");
         }
     }
-    float number(std::size_t i) const {
+    // A coordinate or a length: |v| <= kMaxCoordinate (the collision module's precision limit).
+    float coordinate(std::size_t i) const { return number(i, kMaxCoordinate, "a coordinate from -1e5 to 1e5"); }
+    // Anything else (an angle): |v| <= 1e6.
+    float number(std::size_t i, float limit = 1e6f, const char* what = "a number from -1e6 to 1e6") const {
         const Word& w = words_[i];
         float value = 0.0f;
         const auto [end, ec] = std::from_chars(w.text.data(), w.text.data() + w.text.size(), value);
-        if (ec != std::errc() || end != w.text.data() + w.text.size() || !std::isfinite(value) || std::fabs(value) > 1e6f) {
-            fail(w.column, "expected a number (at most 1e6 in size), got '" + std::string(w.text) + "'");
+        if (ec != std::errc() || end != w.text.data() + w.text.size() || !std::isfinite(value) || std::fabs(value) > limit) {
+            fail(w.column, std::string("expected ") + what + ", got '" + std::string(w.text) + "'");
         }
         return value;
     }
+    // A positive length or speed (a radius, a width, px/s): 0 < v <= kMaxCoordinate.
     float positive(std::size_t i, const char* what) const {
-        const float v = number(i);
+        const float v = coordinate(i);
         if (!(v > 0.0f)) fail(words_[i].column, std::string("expected a positive ") + what + ", got '" + std::string(words_[i].text) + "'");
         return v;
     }
@@ -68,6 +72,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
     std::set<std::string, std::less<>> names;
     int line_number = 0;
     std::size_t at = 0;
+    text = skip_utf8_bom(text);
     if (text.empty()) throw InputError(SourceLocation{source, 1, 0}, "empty file: expected 'jostle-level 1'");
     while (at < text.size()) {
         std::size_t end = text.find('\n', at);
@@ -75,8 +80,13 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
         const std::string_view line = text.substr(at, end - at);
         at = end + 1;
         ++line_number;
+        check_text_line(line, source, line_number);
         std::vector<Word> words = split_words(line);
         if (line_number == 1) {
+            if (words.size() == 2 && words[0].text == "jostle-level" && words[1].text != "1") {
+                throw InputError(SourceLocation{source, 1, words[1].column},
+                                 "format version " + std::string(words[1].text) + " is not supported (this jostle reads version 1)");
+            }
             if (words.size() != 2 || words[0].text != "jostle-level" || words[1].text != "1") {
                 throw InputError(SourceLocation{source, 1, 1}, "expected 'jostle-level 1' as the first line");
             }
@@ -95,10 +105,14 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
         if (head == "player") {
             r.expect_words(3, 4, "player X Y [ANGLE]");
             if (have_player) r.fail(words[0].column, "'player' given twice");
-            level.player_start = {r.number(1), r.number(2)};
+            level.player_start = {r.coordinate(1), r.coordinate(2)};
             if (words.size() == 4) level.player_angle = r.number(3);
             have_player = true;
             continue;
+        }
+        if (level.things.size() >= static_cast<std::size_t>(kMaxLevelThings)) {
+            r.fail(words[0].column, "too many things: a level holds at most " + std::to_string(kMaxLevelThings) +
+                                        " walls, crates, rocks, pickups, cannons, props and blobs");
         }
         LevelThing thing;
         thing.line = line_number;
@@ -113,8 +127,8 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             r.expect_words(6, 6, "wall NAME X0 Y0 X1 Y1");
             take_name();
             thing.kind = LevelThing::Kind::wall;
-            thing.position = {r.number(2), r.number(3)};
-            thing.size = {r.number(4), r.number(5)};
+            thing.position = {r.coordinate(2), r.coordinate(3)};
+            thing.size = {r.coordinate(4), r.coordinate(5)};
             if (thing.size.x <= thing.position.x || thing.size.y <= thing.position.y) {
                 r.fail(r.word(2).column, "expected X0 < X1 and Y0 < Y1");
             }
@@ -122,7 +136,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             r.expect_words(7, 7, "crate NAME X Y WIDTH HEIGHT ANGLE");
             take_name();
             thing.kind = LevelThing::Kind::crate;
-            thing.position = {r.number(2), r.number(3)};
+            thing.position = {r.coordinate(2), r.coordinate(3)};
             thing.size = {r.positive(4, "width"), r.positive(5, "height")};
             thing.angle = r.number(6);
         } else if (head == "rock") {
@@ -136,16 +150,21 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             if (r.word(2).text == "circle") {
                 r.expect_words(6, 6, "rock NAME circle X Y RADIUS");
                 thing.kind = LevelThing::Kind::rock_circle;
-                thing.position = {r.number(3), r.number(4)};
+                thing.position = {r.coordinate(3), r.coordinate(4)};
                 thing.radius = r.positive(5, "radius");
             } else if (r.word(2).text == "poly") {
                 if (r.size() < 11 || (r.size() - 5) % 2 != 0) {
                     r.expect_words(11, 11, "rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs");
                 }
+                const std::size_t max_words = 5 + 2 * static_cast<std::size_t>(kMaxPolygonVertices);
+                if (r.size() > max_words) {
+                    r.fail(r.word(max_words).column, "a polygon has at most " + std::to_string(kMaxPolygonVertices) +
+                                                         " vertices, got " + std::to_string((r.size() - 5) / 2));
+                }
                 thing.kind = LevelThing::Kind::rock_polygon;
-                thing.position = {r.number(3), r.number(4)};
+                thing.position = {r.coordinate(3), r.coordinate(4)};
                 std::vector<Vec2> points;
-                for (std::size_t i = 5; i + 1 < r.size(); i += 2) points.push_back({r.number(i), r.number(i + 1)});
+                for (std::size_t i = 5; i + 1 < r.size(); i += 2) points.push_back({r.coordinate(i), r.coordinate(i + 1)});
                 std::string error;
                 const std::optional<Polygon> polygon = make_polygon(points, &error);
                 if (!polygon) r.fail(r.word(5).column, "not a convex polygon: " + error);
@@ -157,13 +176,13 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             r.expect_words(5, 5, "pickup NAME X Y RADIUS");
             take_name();
             thing.kind = LevelThing::Kind::pickup;
-            thing.position = {r.number(2), r.number(3)};
+            thing.position = {r.coordinate(2), r.coordinate(3)};
             thing.radius = r.positive(4, "radius");
         } else if (head == "cannon") {
             r.expect_words(7, 7, "cannon NAME X Y ANGLE PERIOD_TICKS BALL_SPEED");
             take_name();
             thing.kind = LevelThing::Kind::cannon;
-            thing.position = {r.number(2), r.number(3)};
+            thing.position = {r.coordinate(2), r.coordinate(3)};
             thing.angle = r.number(4);
             thing.period = r.whole(5, 1, 100000, "a period in ticks");
             thing.speed = r.positive(6, "ball speed");
@@ -172,13 +191,13 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             take_name();
             thing.kind = LevelThing::Kind::prop;
             thing.sprite = std::string(r.word(2).text);
-            thing.position = {r.number(3), r.number(4)};
+            thing.position = {r.coordinate(3), r.coordinate(4)};
         } else if (head == "blob") {
             r.expect_words(7, 7, "blob NAME X0 Y0 X1 Y1 SPEED");
             take_name();
             thing.kind = LevelThing::Kind::blob;
-            thing.position = {r.number(2), r.number(3)};
-            thing.size = {r.number(4), r.number(5)};
+            thing.position = {r.coordinate(2), r.coordinate(3)};
+            thing.size = {r.coordinate(4), r.coordinate(5)};
             thing.speed = r.positive(6, "speed");
         } else {
             r.fail(words[0].column, "unknown line '" + std::string(head) +

@@ -18,7 +18,10 @@
 //                                           (pixel-perfect) patrolling between two points
 //
 // '#' starts a comment; blank lines are ignored. Names are unique. Errors name the file, the
-// line and what was expected.
+// line and what was expected. A UTF-8 byte order mark and CRLF line ends are accepted.
+// Limits: every coordinate, length and speed within +-1e5 (kMaxCoordinate), angles within
+// +-1e6, mass <= 1000; at most kMaxLevelThings things; polygons of 3 to 16 vertices; lines
+// and words as in jostle/core/text.h (kMaxLineBytes, kMaxWordBytes).
 #pragma once
 
 #include <string>
@@ -30,6 +33,8 @@
 namespace jostle::game {
 
 inline constexpr int kLevelFormatVersion = 1;
+// Things (walls, crates, rocks, pickups, cannons, props, blobs) in one level.
+inline constexpr int kMaxLevelThings = 10000;
 
 struct LevelThing {
     enum class Kind { wall, crate, rock_circle, rock_polygon, pickup, cannon, prop, blob };

@@ -15,6 +15,7 @@
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/core/interrupt.h"
+#include "jostle/core/text.h"
 #include "jostle/replay/record.h"
 #include "jostle/replay/replay.h"
 
@@ -144,9 +145,7 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         if (script_path.empty()) {
             script_text = read_all(in);
         } else {
-            std::ifstream file(script_path, std::ios::binary);
-            if (!file) throw InputError(SourceLocation{script_path, 0, 0}, "cannot open the script");
-            script_text = read_all(file);
+            script_text = read_text_file(script_path, "the script");
         }
         throw_if_interrupted();  // Ctrl-C while the script was typed: the read ended early
         const std::vector<ScriptStep> script = parse_input_script(script_text, script_source, game.vocabulary());

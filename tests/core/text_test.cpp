@@ -1,5 +1,6 @@
-// text_test.cpp: the shared line tokenizer (words, columns, '#' comments) and the exact
-// number and hash formatting every file format relies on.
+// text_test.cpp: the shared line tokenizer (words, columns, '#' comments), the checks every
+// text line passes (length, text not binary, word length, a BOM) and the exact number and hash
+// formatting every file format relies on.
 #include "jostle/core/text.h"
 
 #include <gtest/gtest.h>
@@ -7,6 +8,8 @@
 #include <charconv>
 #include <cmath>
 #include <random>
+
+#include "jostle/core/error.h"
 
 namespace jostle {
 namespace {
@@ -36,6 +39,46 @@ TEST(ShortestText, ReadsBackAsTheSameValue) {
         std::from_chars(text.data(), text.data() + text.size(), back);
         ASSERT_EQ(back, v) << text;
     }
+}
+
+// The message check_text_line throws for `line` as line 7 of "f.txt", or "ok".
+std::string line_error(std::string_view line) {
+    try {
+        check_text_line(line, "f.txt", 7);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "ok";
+}
+
+TEST(CheckTextLine, TextOfASaneLengthPasses) {
+    EXPECT_EQ(line_error(""), "ok");
+    EXPECT_EQ(line_error("0-29 right\tfire  # a comment"), "ok");
+    EXPECT_EQ(line_error("wall w 0 0 1 1\r"), "ok");  // a CRLF line end
+    EXPECT_EQ(line_error("pickup caf\xc3\xa9 1 2 3 # \xe2\x82\xac \xf0\x9f\x98\x80"), "ok");  // UTF-8
+    EXPECT_EQ(line_error(std::string(kMaxLineBytes, ' ')), "ok");
+    EXPECT_EQ(line_error(std::string(kMaxWordBytes, 'w')), "ok");
+    EXPECT_EQ(line_error("# " + std::string(1000, 'w')), "ok");  // words in a comment are not words
+}
+
+TEST(CheckTextLine, BinaryLongAndOddLinesAreRefusedWithTheirColumn) {
+    EXPECT_EQ(line_error(std::string(kMaxLineBytes + 1, ' ')),
+              "f.txt:7: the line is 65537 bytes long; a line is at most 65536 bytes");
+    EXPECT_EQ(line_error("ab " + std::string(kMaxWordBytes + 1, 'w')), "f.txt:7:4: a word of 129 bytes; a word is at most 128 bytes");
+    EXPECT_EQ(line_error(std::string("0 le\0ft", 8)), "f.txt:7:5: expected text, got the control character 0x00 (is this a binary file?)");
+    EXPECT_EQ(line_error("a\x7f"), "f.txt:7:2: expected text, got the control character 0x7f (is this a binary file?)");
+    EXPECT_EQ(line_error("a\rb"), "f.txt:7:2: expected text, got a carriage return (0x0d) inside the line (lines end with LF or CRLF)");
+    EXPECT_EQ(line_error("\x89PNG"), "f.txt:7:1: expected text, got the byte 0x89 (not UTF-8: is this a binary file?)");
+    EXPECT_EQ(line_error("ab\xc3"), "f.txt:7:3: expected text, got the byte 0xc3 (not UTF-8: is this a binary file?)");     // cut short
+    EXPECT_EQ(line_error("\xc0\xaf"), "f.txt:7:1: expected text, got the byte 0xc0 (not UTF-8: is this a binary file?)");   // overlong
+    EXPECT_EQ(line_error("\xed\xa0\x80"), "f.txt:7:1: expected text, got the byte 0xed (not UTF-8: is this a binary file?)");  // a surrogate
+}
+
+TEST(SkipUtf8Bom, OnlyALeadingMark) {
+    EXPECT_EQ(skip_utf8_bom("\xef\xbb\xbfjostle-level 1\n"), "jostle-level 1\n");
+    EXPECT_EQ(skip_utf8_bom("jostle-level 1\n"), "jostle-level 1\n");
+    EXPECT_EQ(skip_utf8_bom("\xef\xbb"), "\xef\xbb");
+    EXPECT_EQ(skip_utf8_bom(""), "");
 }
 
 TEST(Hex16, SixteenLowercaseDigitsZeroPadded) {

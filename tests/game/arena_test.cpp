@@ -418,7 +418,7 @@ TEST_F(Arena, BadOrMissingLevelFilesAreInputErrors) {
         game.start("missing", 1, 60);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), missing + ": cannot open the level file");
+        EXPECT_EQ(std::string(e.what()), missing + ": cannot open the level file: No such file or directory");
     }
     EXPECT_THROW(game.level_hash("missing"), InputError);
 }

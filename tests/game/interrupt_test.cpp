@@ -103,7 +103,7 @@ protected:
     test::RunResult check(std::vector<std::string> args, int signal_after_ms = -1, int signal = SIGINT) {
         args.insert(args.begin(), {"check", "--assets", kAssets});
         args.push_back(scenarios().string());
-        return test::run_jostle_binary(args, "/dev/null", "", signal_after_ms, signal);
+        return test::run_jostle_binary(args, "/dev/null", "", signal_after_ms, -1, signal);
     }
 
     const test::TempFolder dir_{"interrupt"};
@@ -241,7 +241,7 @@ TEST_F(Interrupt, SixtyRandomSignalsDuringPlayCheckAndUpdate) {
         return test::run_jostle_binary({"play", dir_.file("long.scn"), "--assets", kAssets, "--out",
                                         (dir_.path() / ("frames_" + tag)).string(), "--size", "160x120", "--every", "4",
                                         "--anim", (dir_.path() / ("run_" + tag + ".png")).string()},
-                                       "/dev/null", "", delay_ms, sig);
+                                       "/dev/null", "", delay_ms, -1, sig);
     };
     const auto restore = [&](const fs::path& from) {
         fs::remove_all(scenarios());

@@ -172,10 +172,31 @@ TEST(LevelErrors, MassPropsAndBlobs) {
 
 TEST(LevelErrors, NotALevelFile) {
     EXPECT_EQ(error_of(""), "l.level:1: empty file: expected 'jostle-level 1'");
-    EXPECT_EQ(error_of("jostle-level 2\nsize 1 1\nplayer 0 0\n"), "l.level:1:1: expected 'jostle-level 1' as the first line");
+    EXPECT_EQ(error_of("jostle-level 2\nsize 1 1\nplayer 0 0\n"), "l.level:1:14: format version 2 is not supported (this jostle reads version 1)");
     EXPECT_EQ(error_of("jostle-scenario 1\n"), "l.level:1:1: expected 'jostle-level 1' as the first line");
     EXPECT_EQ(error_of(std::string("# comment\n").append(kHead)), "l.level:1:1: expected 'jostle-level 1' as the first line");
     EXPECT_EQ(error_of("jostle-level\n"), "l.level:1:1: expected 'jostle-level 1' as the first line");
+}
+
+TEST(Level, AByteOrderMarkAndCrlfLineEndsAreAccepted) {
+    const std::string text = "jostle-level 1\r\nsize 320 200\r\nplayer 10 20 1.5\r\nwall w 0 0 320 8\r\n";
+    for (const std::string& variant : {text, "\xef\xbb\xbf" + text}) {
+        const Level level = parse_level(variant, "l.level", "mine");
+        EXPECT_EQ(level.size.y, 200.0f);
+        ASSERT_EQ(level.things.size(), 1u);
+        EXPECT_EQ(level.things[0].size.y, 8.0f);
+    }
+    // Only a leading mark is one; a carriage return inside a line is refused.
+    EXPECT_EQ(error_of("jostle-level 1\nsize 1 1\rplayer 0 0\n"),
+              "l.level:2:9: expected text, got a carriage return (0x0d) inside the line (lines end with LF or CRLF)");
+}
+
+TEST(LevelErrors, TooManyThings) {
+    std::string text = kHead;
+    for (int i = 0; i < kMaxLevelThings; ++i) text += "pickup p" + std::to_string(i) + " 1 1 1\n";
+    EXPECT_EQ(error_of(text), "no error");
+    EXPECT_EQ(error_of(text + "  wall w 0 0 1 1\n"),
+              "l.level:10004:3: too many things: a level holds at most 10000 walls, crates, rocks, pickups, cannons, props and blobs");
 }
 
 TEST(LevelErrors, UnknownLineKind) {
@@ -201,7 +222,8 @@ TEST(LevelErrors, PolygonRocks) {
               "l.level:4:21: not a convex polygon: polygon vertices 0 and 2 are the same point");
     std::string seventeen = "rock r poly 0 0";
     for (int i = 0; i < 17; ++i) seventeen.append(" ").append(std::to_string(i)).append(" ").append(std::to_string(i * i));
-    EXPECT_EQ(error_of_line(seventeen), "l.level:4:17: not a convex polygon: a polygon needs 3 to 16 vertices, got 17");
+    // Too many vertices is said at the first one too many, before any number is read.
+    EXPECT_EQ(error_of_line(seventeen), "l.level:4:105: a polygon has at most 16 vertices, got 17");
     const std::string form = "expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs'";
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0"), "l.level:4:24: " + form);        // two vertices
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 5"), "l.level:4:29: " + form);  // a lone coordinate
@@ -239,8 +261,9 @@ TEST(LevelErrors, WrongWordCounts) {
 }
 
 TEST(LevelErrors, NumbersTooBigNotFiniteOrNotPositive) {
+    // Coordinates and lengths: within kMaxCoordinate (1e5); other numbers (angles, speeds): 1e6.
     const auto number = [](int column, const std::string& got) {
-        return "l.level:4:" + std::to_string(column) + ": expected a number (at most 1e6 in size), got '" + got + "'";
+        return "l.level:4:" + std::to_string(column) + ": expected a coordinate from -1e5 to 1e5, got '" + got + "'";
     };
     EXPECT_EQ(error_of_line("wall w 0 0 1000001 8"), number(12, "1000001"));
     EXPECT_EQ(error_of_line("wall w 0 0 1e7 8"), number(12, "1e7"));
@@ -249,8 +272,11 @@ TEST(LevelErrors, NumbersTooBigNotFiniteOrNotPositive) {
     EXPECT_EQ(error_of_line("pickup p nan 1 2"), number(10, "nan"));
     EXPECT_EQ(error_of_line("pickup p 1 inf 2"), number(12, "inf"));
     EXPECT_EQ(error_of_line("pickup p 1 2 x"), number(14, "x"));
-    EXPECT_EQ(error_of_line("crate c 1 2 3 4 0.5rad"), number(17, "0.5rad"));
-    EXPECT_EQ(error_of("jostle-level 1\nsize 1e6 1e6\nplayer -1e6 0\n"), "no error");  // 1e6 itself is fine
+    EXPECT_EQ(error_of_line("wall w 0 0 100001 8"), number(12, "100001"));
+    EXPECT_EQ(error_of_line("rock r poly 0 0 0 0 1e5 0 0 100000.01"), number(29, "100000.01"));
+    EXPECT_EQ(error_of_line("crate c 1 2 3 4 0.5rad"), "l.level:4:17: expected a number from -1e6 to 1e6, got '0.5rad'");
+    EXPECT_EQ(error_of_line("cannon k 1 2 2e6 10 600"), "l.level:4:14: expected a number from -1e6 to 1e6, got '2e6'");
+    EXPECT_EQ(error_of("jostle-level 1\nsize 1e5 1e5\nplayer -1e5 0 -1e6\n"), "no error");  // the limits themselves are fine
     EXPECT_EQ(error_of("jostle-level 1\nsize 0 480\nplayer 0 0\n"), "l.level:2:6: expected a positive width, got '0'");
     EXPECT_EQ(error_of("jostle-level 1\nsize 640 -1\nplayer 0 0\n"), "l.level:2:10: expected a positive height, got '-1'");
     EXPECT_EQ(error_of_line("pickup p 1 2 0"), "l.level:4:14: expected a positive radius, got '0'");

@@ -136,7 +136,7 @@ TEST_F(Play, BadInputExitsTwoNamingFileAndLine) {
     const std::string missing = path("missing.scn");
     r = play({missing});
     EXPECT_EQ(r.status, 2);
-    EXPECT_EQ(r.err, "jostle play: " + missing + ": cannot open the scenario file\n");
+    EXPECT_EQ(r.err, "jostle play: " + missing + ": cannot open the scenario file: No such file or directory\n");
 
     const std::string lives = scenario("lives.scn", "0 up\nat 0 expect var lives = 3\n");
     r = play({lives});

@@ -266,7 +266,7 @@ TEST_F(Record, UsageErrorsExitTwoWithTheirMessage) {
 
     // A script that cannot be opened is bad input, not bad usage.
     const std::string missing = path("no_such.script");
-    expect_rejected({"--level", "arena", "-o", kOut, s, missing}, "jostle record: " + missing + ": cannot open the script\n");
+    expect_rejected({"--level", "arena", "-o", kOut, s, missing}, "jostle record: " + missing + ": cannot open the script: No such file or directory\n");
 
     // --from and --at go together, without --level; --at counts ticks of the --from scenario.
     const std::string from = write("from.scn", header() + "0-4 up\nat 9 expect player alive\n");  // 10 ticks
@@ -282,7 +282,7 @@ TEST_F(Record, UsageErrorsExitTwoWithTheirMessage) {
     }
     // The --from scenario is checked like any scenario.
     const std::string absent = path("absent.scn");
-    expect_rejected({"--from", absent, "--at", "0", "-o", kOut, s, script}, "jostle record: " + absent + ": cannot open the scenario file\n");
+    expect_rejected({"--from", absent, "--at", "0", "-o", kOut, s, script}, "jostle record: " + absent + ": cannot open the scenario file: No such file or directory\n");
     const std::string no_rate = write("no_rate.scn", "jostle-scenario 1\nengine 0.1.0\nlevel arena\nseed 1\n0 up\n");
     expect_rejected({"--from", no_rate, "--at", "0", "-o", kOut, s, script},
                     "jostle record: " + no_rate + ":5:1: expected the header line 'tick-rate ...' before the input\n");

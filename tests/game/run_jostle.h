@@ -2,12 +2,14 @@
 // end-to-end tests, with stdin from a file and an optional working folder, collecting its exit
 // status, stdout and stderr (both pipes polled, so neither can fill up and block the child).
 // The interruption tests also have it send a signal (SIGINT unless told) a given time after
-// the start.
+// the start; the hostile-input tests give it a file-size limit (a full disk: writes beyond it
+// fail with EFBIG).
 #pragma once
 
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -33,10 +35,11 @@ struct RunResult {
     std::string err;
 };
 
-// Runs `program` (a path) with `args`.
+// Runs `program` (a path) with `args`. With file_size_limit >= 0 the program runs under that
+// RLIMIT_FSIZE with SIGXFSZ ignored, so a write past the limit fails with EFBIG as on a full disk.
 inline RunResult run_program(const std::string& program, const std::vector<std::string>& args,
                              const std::string& stdin_path = "/dev/null", const std::string& cwd = "",
-                             int signal_after_ms = -1, int signal = SIGINT) {
+                             int signal_after_ms = -1, long long file_size_limit = -1, int signal_number = SIGINT) {
     RunResult result;
     int out_pipe[2];
     int err_pipe[2];
@@ -58,8 +61,23 @@ inline RunResult run_program(const std::string& program, const std::vector<std::
     for (std::string& s : argv_strings) argv.push_back(s.data());
     argv.push_back(nullptr);
 
+    // The child inherits the limit and the ignored signal; this process has them only while
+    // it spawns (it writes nothing meanwhile).
+    rlimit saved_limit{};
+    void (*saved_handler)(int) = SIG_DFL;
+    if (file_size_limit >= 0) {
+        getrlimit(RLIMIT_FSIZE, &saved_limit);
+        rlimit limit = saved_limit;
+        limit.rlim_cur = static_cast<rlim_t>(file_size_limit);
+        saved_handler = signal(SIGXFSZ, SIG_IGN);
+        if (setrlimit(RLIMIT_FSIZE, &limit) != 0) ADD_FAILURE() << "setrlimit(RLIMIT_FSIZE) failed";
+    }
     pid_t pid = 0;
     const int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+    if (file_size_limit >= 0) {
+        setrlimit(RLIMIT_FSIZE, &saved_limit);
+        signal(SIGXFSZ, saved_handler);
+    }
     posix_spawn_file_actions_destroy(&actions);
     close(out_pipe[1]);
     close(err_pipe[1]);
@@ -79,7 +97,7 @@ inline RunResult run_program(const std::string& program, const std::vector<std::
             const auto elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - started);
             timeout = std::max(0, signal_after_ms - static_cast<int>(elapsed.count()));
             if (timeout == 0) {
-                kill(pid, signal);
+                kill(pid, signal_number);
                 result.signalled = true;
                 timeout = -1;
             }
@@ -116,8 +134,9 @@ inline RunResult run_program(const std::string& program, const std::vector<std::
 
 // Runs the built jostle program.
 inline RunResult run_jostle_binary(const std::vector<std::string>& args, const std::string& stdin_path = "/dev/null",
-                                   const std::string& cwd = "", int signal_after_ms = -1, int signal = SIGINT) {
-    return run_program(JOSTLE_BINARY, args, stdin_path, cwd, signal_after_ms, signal);
+                                   const std::string& cwd = "", int signal_after_ms = -1,
+                                   long long file_size_limit = -1, int signal_number = SIGINT) {
+    return run_program(JOSTLE_BINARY, args, stdin_path, cwd, signal_after_ms, file_size_limit, signal_number);
 }
 
 }  // namespace jostle::test

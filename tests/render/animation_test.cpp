@@ -209,7 +209,7 @@ TEST_F(Animation, BadSettingsAndUnwritablePathsAreErrorsNamingThePath) {
         AnimationWriter writer(missing);
         FAIL() << "no error";
     } catch (const InputError& e) {
-        EXPECT_THAT(e.what(), StartsWith(missing + ": cannot write: cannot create temporary file "));
+        EXPECT_THAT(e.what(), StartsWith(missing + ": cannot write: cannot create a file in "));
     }
     EXPECT_TRUE(files().empty());
 }

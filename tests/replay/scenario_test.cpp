@@ -358,7 +358,7 @@ TEST(Scenario, LoadScenarioReadsAFileAndNamesItInErrors) {
         load_scenario(missing, kVocabulary);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), missing + ": cannot open the scenario file");
+        EXPECT_EQ(std::string(e.what()), missing + ": cannot open the scenario file: No such file or directory");
     }
 }
 
@@ -418,7 +418,8 @@ TEST(ScenarioErrors, NotAScenarioFile) {
     const std::string message = "s.scn:1:1: expected 'jostle-scenario 1' as the first line (is this a scenario file?)";
     EXPECT_EQ(error_of("jostle-trace 1\nticks 3\n"), message);
     EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\n"), message);
-    EXPECT_EQ(error_of(std::string("\x89PNG\r\n\x1a\n", 8)), message);
+    // Binary files are called that (every line must be text first).
+    EXPECT_EQ(error_of(std::string("\x89PNG\r\n\x1a\n", 8)), "s.scn:1:1: expected text, got the byte 0x89 (not UTF-8: is this a binary file?)");
     EXPECT_EQ(error_of("\n"), message);
     EXPECT_EQ(error_of("JOSTLE-SCENARIO 1\n"), message);
     // The version line is always the first line: not even a comment comes before it.

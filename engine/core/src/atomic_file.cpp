@@ -20,7 +20,10 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
         if (fd < 0) {
             if (errno == EEXIST) continue;
             const int e = errno;
-            fail("cannot create temporary file " + name + ": " + std::strerror(e));
+            // The temporary file's name (pid, attempt) is no business of the message: say where.
+            const std::size_t slash = path_.rfind('/');
+            const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path_.substr(0, slash);
+            fail("cannot create a file in " + folder + ": " + std::strerror(e));
         }
         temp_path_ = std::move(name);
         file_ = ::fdopen(fd, "wb");
@@ -94,7 +97,7 @@ void AtomicFile::commit() {
     }
     if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
         const int e = errno;
-        fail("cannot rename " + temp_path_ + " to it: " + std::strerror(e));
+        fail(e == EISDIR ? std::string("it is a folder") : "cannot put the finished file in its place: " + std::string(std::strerror(e)));
     }
     committed_ = true;
 }

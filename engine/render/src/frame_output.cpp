@@ -110,6 +110,7 @@ struct FrameWriter::Impl {
     bool busy = false;
     bool stopping = false;
     std::thread worker;
+    std::vector<std::filesystem::path> created;  // folders the constructor made, deepest first
 
     void run() {
         std::unique_lock lock(mutex);
@@ -139,6 +140,11 @@ struct FrameWriter::Impl {
 FrameWriter::FrameWriter(const FrameWriterDesc& desc) : impl_(std::make_unique<Impl>()) {
     impl_->desc = desc;
     std::error_code ec;
+    std::filesystem::path folder = std::filesystem::path(desc.folder).lexically_normal();
+    if (!folder.has_filename()) folder = folder.parent_path();  // "frames/"
+    for (std::filesystem::path p = folder; !p.empty() && p.has_relative_path() && !std::filesystem::exists(p, ec); p = p.parent_path()) {
+        impl_->created.push_back(p);
+    }
     std::filesystem::create_directories(desc.folder, ec);
     if (ec || !std::filesystem::is_directory(desc.folder)) {
         throw InputError(SourceLocation{desc.folder}, "cannot create the frame folder" + (ec ? ": " + ec.message() : std::string()));
@@ -153,6 +159,13 @@ FrameWriter::~FrameWriter() {
     }
     impl_->changed.notify_all();
     if (impl_->worker.joinable()) impl_->worker.join();
+    // A run that fails (or is stopped) leaves no folder of ours behind that it left empty.
+    if (std::uncaught_exceptions() > 0) {
+        std::error_code ec;
+        for (const std::filesystem::path& folder : impl_->created) {
+            if (!std::filesystem::is_empty(folder, ec) || ec || !std::filesystem::remove(folder, ec)) break;
+        }
+    }
 }
 
 void FrameWriter::write(std::int64_t frame, Image image) {

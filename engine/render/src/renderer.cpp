@@ -20,7 +20,6 @@ using detail::Vertex;
 namespace {
 
 constexpr int kMaxAtlasSide = 4096;
-constexpr int kMaxSpriteSide = 2048;
 constexpr int kPadding = 1;  // clear texels between sprites, so nearest sampling never bleeds
 constexpr int kWhite = 2;    // the white block at (0, 0) that solid colour samples
 

@@ -30,12 +30,14 @@ std::vector<ScriptStep> parse_input_script(std::string_view text, const std::str
     std::vector<ScriptStep> steps;
     int line_number = 0;
     std::size_t at = 0;
+    text = skip_utf8_bom(text);
     while (at < text.size()) {
         std::size_t end = text.find('\n', at);
         if (end == std::string_view::npos) end = text.size();
         const std::string_view line = text.substr(at, end - at);
         at = end + 1;
         ++line_number;
+        check_text_line(line, source, line_number);
         const std::vector<Word> words = split_words(line);
         if (words.empty()) continue;
         auto fail = [&](int column, const std::string& what) -> void {
@@ -98,6 +100,18 @@ Recording record(const Game& game, const RecordDesc& desc, std::span<const Scrip
         s.seed = desc.seed;
         s.tick_rate = desc.tick_rate;
     }
+    // A script too long for a scenario is refused before anything is played, at the step that
+    // goes past the limit (not after minutes of recording).
+    std::int64_t total = desc.from != nullptr ? desc.keep_ticks : 0;
+    for (const ScriptStep& step : script) {
+        if (step.kind != ScriptStep::Kind::hold) continue;
+        total += step.ticks;
+        if (total > kMaxScenarioTicks) {
+            throw InputError(SourceLocation{script_source, step.line, 1},
+                             "the recording would be longer than a scenario can be (" + std::to_string(kMaxScenarioTicks) +
+                                 " ticks)");
+        }
+    }
     s.level_hash = game.level_hash(s.level);
     s.source = script_source;
     std::unique_ptr<Simulation> sim = game.start(s.level, s.seed, s.tick_rate);
@@ -125,11 +139,8 @@ Recording record(const Game& game, const RecordDesc& desc, std::span<const Scrip
         const std::int64_t last = static_cast<std::int64_t>(s.inputs.size()) - 1;
         switch (step.kind) {
             case ScriptStep::Kind::hold:
-                if (step.ticks > kMaxScenarioTicks - static_cast<std::int64_t>(s.inputs.size())) {
-                    throw InputError(SourceLocation{script_source, step.line, 1},
-                                     "the recording would be longer than a scenario can be (" +
-                                         std::to_string(kMaxScenarioTicks) + " ticks)");
-                }
+                JOSTLE_ASSERT(step.ticks <= kMaxScenarioTicks - static_cast<std::int64_t>(s.inputs.size()),
+                              "record: the script's length was checked before playing");
                 for (std::int64_t i = 0; i < step.ticks; ++i) play(step.input);
                 break;
             case ScriptStep::Kind::screenshot:

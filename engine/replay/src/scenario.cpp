@@ -6,9 +6,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "jostle/core/error.h"
 #include "jostle/core/text.h"
@@ -201,7 +199,15 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
     Scenario s;
     s.source = source;
 
+    text = skip_utf8_bom(text);
     if (text.empty()) p.fail(1, 0, "empty file: expected 'jostle-scenario " + std::to_string(kScenarioFormatVersion) + "'");
+    // Every line is text of a sane length before anything else is said about it (binary
+    // garbage is called that, not a truncated file).
+    for (std::size_t at = 0, line = 1; at < text.size(); ++line) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        check_text_line(text.substr(at, end - at), source, static_cast<int>(line));
+        at = end + 1;
+    }
     if (text.back() != '\n') {
         const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
         p.fail(lines, 0, "truncated file: the last line has no newline");
@@ -376,12 +382,7 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
 }
 
 Scenario load_scenario(const std::string& path, const ScenarioVocabulary& vocabulary) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot open the scenario file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw InputError(SourceLocation{path, 0, 0}, "cannot read the scenario file");
-    return parse_scenario(text.str(), path, vocabulary);
+    return parse_scenario(read_text_file(path, "the scenario file"), path, vocabulary);
 }
 
 std::string format_input(InputFrame input, const ScenarioVocabulary& vocabulary) {

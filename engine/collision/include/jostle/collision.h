@@ -106,7 +106,8 @@
 //
 // LIMITS
 //   Polygon: 3..16 vertices (kMaxPolygonVertices). Mask: up to 4096 x 4096 pixels
-//   (kMaxMaskSide). Coordinates: keep |x|, |y| <= 1e5 px; floats then resolve 1/128 px, and
+//   (kMaxMaskSide). Coordinates: keep |x|, |y| <= 1e5 px (kMaxCoordinate; the game's level
+//   files are held to it); floats then resolve 1/128 px, and
 //   depths and normals agree with a double-precision computation to about 1e-4 of the
 //   shapes' size. Beyond that, results stay defined but lose precision. So they do for a
 //   shape smaller than about 1e-4 of the other's size or of their distance: to float it is a
@@ -129,6 +130,7 @@ namespace jostle {
 
 inline constexpr int kMaxPolygonVertices = 16;
 inline constexpr int kMaxMaskSide = 4096;
+inline constexpr float kMaxCoordinate = 1e5f;
 
 // ---------------------------------------------------------------------------------------
 // Shapes

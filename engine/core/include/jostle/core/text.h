@@ -1,14 +1,40 @@
 // jostle/core/text.h: the small text helpers shared by every line-oriented file format
 // (scenarios, input scripts, levels, traces): splitting a line into words with columns,
-// and exact number and hash formatting.
+// the checks every line of those files passes first (length, text, word length), and exact
+// number and hash formatting.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace jostle {
+
+// Limits on a line of a text file: a level, a scenario, an input script (README, "Limits").
+// A longer line or word is refused with its line and column, before it is read further.
+inline constexpr std::size_t kMaxLineBytes = 65536;
+inline constexpr std::size_t kMaxWordBytes = 128;
+
+// The whole file at `path` (a level, a scenario, a script). Throws InputError naming the path
+// and `what` it should be ("the scenario file") with the reason: it does not exist, it is a
+// folder, it cannot be read.
+std::string read_text_file(const std::string& path, const std::string& what);
+
+// `text` without a leading UTF-8 byte order mark (EF BB BF): the text formats accept one.
+std::string_view skip_utf8_bom(std::string_view text);
+
+// Checks one line of a text file (without its '\n'; a '\r' before it is a CRLF line end and
+// is allowed) and throws InputError naming source:line_number:column when it is longer than
+// kMaxLineBytes, holds a control character (anything below 0x20 but tab, a '\r' inside the
+// line, 0x7f) or bytes that are not UTF-8 (binary garbage), or a word (before any '#'
+// comment) longer than kMaxWordBytes.
+void check_text_line(std::string_view line, const std::string& source, int line_number);
+
+// Length of the well-formed UTF-8 sequence that starts at s[i] (1 for ASCII), or 0 when it is
+// not one: a stray continuation byte, an overlong form, a surrogate, beyond U+10FFFF, cut short.
+std::size_t utf8_sequence_length(std::string_view s, std::size_t i);
 
 // A word of a line and its 1-based column, for error messages.
 struct Word {

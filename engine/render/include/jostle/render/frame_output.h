@@ -59,7 +59,9 @@ class FrameWriter {
 public:
     // Throws InputError naming the folder when it cannot be created.
     explicit FrameWriter(const FrameWriterDesc& desc);
-    // Waits for the queued frames; errors are dropped here (call finish() to see them).
+    // Waits for the queued frames; errors are dropped here (call finish() to see them). When
+    // it runs while an exception unwinds (a failed or interrupted run), the folders the
+    // constructor created are removed if they are still empty.
     ~FrameWriter();
     FrameWriter(const FrameWriter&) = delete;
     FrameWriter& operator=(const FrameWriter&) = delete;

@@ -20,6 +20,9 @@
 
 namespace jostle {
 
+// The largest sprite side add_sprite takes.
+inline constexpr int kMaxSpriteSide = 2048;
+
 struct Color {
     std::uint8_t r = 0;
     std::uint8_t g = 0;
@@ -59,7 +62,7 @@ public:
     std::uint64_t serial() const;
 
     // Adds an image (straight RGBA) to the atlas. Throws jostle::InputError when it does not
-    // fit (sides up to 2048 px; the atlas is one 4096 x 4096 page).
+    // fit (sides up to kMaxSpriteSide px; the atlas is one 4096 x 4096 page).
     SpriteId add_sprite(const Image& image);
     Vec2 sprite_size(SpriteId id) const;  // {0, 0} for an unknown id
 

@@ -8,6 +8,8 @@
 //   screenshot             keep a screenshot of the state after the last tick played
 //   expect player alive    an expectation about that state (the forms of scenario.h)
 //
+// Text as in scenario.h: a BOM and CRLF line ends are accepted, binary bytes are refused.
+//
 // Doom's rule: the recorder then reads its own file back and replays it; the recording is
 // good only when the replay gives the recorded run's hash on every tick.
 #pragma once

@@ -24,6 +24,8 @@
 //   at 120 end                         the run is 120 ticks: 0 .. 119
 //
 // Ticks are numbered from 0; "at T" happens after tick T's step (frame T shows that state).
+// The file is UTF-8 text (a leading byte order mark and CRLF line ends are accepted; each line
+// passes check_text_line of jostle/core/text.h first: length, no binary bytes).
 // Input lines go in increasing tick order without overlaps; directives may stand anywhere.
 // Without "at T end" the run lasts until the last tick any line mentions. The header lines
 // come before the first input or directive line, each exactly once.
