@@ -299,5 +299,24 @@ TEST(SweepShape, ContactPointBeyondFloatRangeIsAMiss) {
     EXPECT_TRUE(sweep(Circle{{-3, 0}, 1}, {4, 0}, Shape{tri}, {0, 0}).hit);
 }
 
+TEST(SweepObb, PointSizedBoxIsNotTunnelledThrough) {
+    // Found by the collision fuzz target (regressions/collision/sweep_point_sized_obb_tunnels.bin):
+    // a ball of radius 1.5 passes 1.18 px from a box 2e-7 px across. To float the box is a
+    // point, every corner meets the ball at the same t, and rounding picked the far corner,
+    // whose cone of normals faces away; its neighbours' cones did too, so the contact took a
+    // face normal the ball only grazes, and the sweep missed. The opposite corner's cone holds
+    // the direction: a hit where a point there would be hit.
+    const Circle ball{{15.75f, 15.75f}, 1.5f};
+    const Vec2 v{-23.75f, -24.0f};
+    const Obb box{{1e-7f, 0.0f}, {1e-7f, 1e-7f}, 1e-7f};
+    const SweepHit point = sweep(ball, v, Circle{box.center, 0.0f});
+    ASSERT_TRUE(point.hit);
+    for (const SweepHit h : {sweep(ball, v, box), sweep(ball, v, to_polygon(box))}) {
+        ASSERT_TRUE(h.hit);
+        EXPECT_NEAR(h.t, point.t, 1e-5f);
+        EXPECT_GT(dot(h.normal, v), 0.0f) << "the normal points along the motion, into the box";
+    }
+}
+
 }  // namespace
 }  // namespace jostle

@@ -3,6 +3,7 @@
 // as an overlap test, and a moving circle against boxes, polygons, segments and masks, so
 // that no fast ball passes through a thin wall.
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 
@@ -183,8 +184,9 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
         // the nearest faces of non-zero length before and after it (a cone of 180 degrees --
         // a segment's end, a flat box's end -- is the half-plane turning positively from one
         // to the other; a point-sized box has none). Outside it, rounding let this vertex win
-        // a tie: with the neighbour across a tiny face (a thin box's other corner), whose cone
-        // holds the direction, or with an adjacent face, whose exact normal it then takes.
+        // a tie: with the neighbour across a tiny face (a thin box's other corner), or with any
+        // corner of a shape that float sees as a point, whose cone holds the direction; or
+        // with an adjacent face, whose exact normal it then takes.
         auto cone_bounds = [&](int vtx, Vec2& n_prev, Vec2& n_next) {
             int prev = -1, next = -1;
             for (int k = 1; k <= count && prev < 0; ++k) {
@@ -207,8 +209,20 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
             return cross(n_prev, out) < 0.0f;
         };
         if (outside_cone(vertex, outward)) {
+            // The neighbours first; then, for a shape so small that float sees a point (every
+            // corner meets the ball at the same t), the other corners: the opposite one holds
+            // the direction there.
+            const int before = (vertex + count - 1) % count, after = (vertex + 1) % count;
+            std::array<int, kMaxPolygonVertices> candidates{};
+            std::size_t n_candidates = 0;
+            candidates[n_candidates++] = before;
+            if (after != before) candidates[n_candidates++] = after;
+            for (int i = 0; i < count; ++i) {
+                if (i != vertex && i != before && i != after) candidates[n_candidates++] = i;
+            }
             bool moved = false;
-            for (const int nb : {(vertex + count - 1) % count, (vertex + 1) % count}) {
+            for (std::size_t k = 0; k < n_candidates; ++k) {
+                const int nb = candidates[k];
                 const detail::CircleContact c = detail::first_contact_with_circle(points[nb] - from, v, r);
                 if (c.hit && c.t <= best_t + 1e-5f * (1.0f + best_t) && !outside_cone(nb, c.outward)) {
                     outward = c.outward;
