@@ -146,8 +146,10 @@ inline double signed_distance_convex(const std::vector<D2>& v, D2 p) {
         if (off > 0) inside = false;
         inner = std::min(inner, -off);
     }
-    // A shape without area (a point or a segment as a box) has no inside.
-    return inside && area2 != 0 ? -inner : outer;
+    // A shape without area (a point or a segment as a box) has no inside; nor does a point
+    // of its line beyond it, whose offsets from the edges are all 0 (the area may still come
+    // out not quite 0 in double). On a real boundary both answers are 0.
+    return inside && area2 != 0 && inner > 0 ? -inner : outer;
 }
 
 // Signed distance from p to any non-mask shape (segments and zero-area shapes: >= 0).
