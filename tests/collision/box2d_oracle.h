@@ -22,6 +22,7 @@
 #include <span>
 
 #include "jostle/collision.h"
+#include "oracle.h"
 
 namespace jostle::oracle {
 
@@ -175,18 +176,15 @@ inline Toi time_of_impact(const Circle& a, Vec2 va, std::span<const Vec2> b_vert
 // ---------------------------------------------------------------------------------------
 namespace exact {
 
-struct D2 {
-    double x = 0.0;
-    double y = 0.0;
-};
-inline D2 d2(Vec2 v) { return {v.x, v.y}; }
-inline D2 operator+(D2 a, D2 b) { return {a.x + b.x, a.y + b.y}; }
-inline D2 operator-(D2 a, D2 b) { return {a.x - b.x, a.y - b.y}; }
-inline D2 operator-(D2 a) { return {-a.x, -a.y}; }
-inline D2 operator*(double s, D2 v) { return {s * v.x, s * v.y}; }
-inline double dot(D2 a, D2 b) { return a.x * b.x + a.y * b.y; }
-inline double cross(D2 a, D2 b) { return a.x * b.y - a.y * b.x; }
-inline double len(D2 v) { return std::sqrt(dot(v, v)); }
+// The double-precision vector of the independent oracle (oracle.h), under this file's names.
+using test::D2;
+using test::d2;
+using test::operator+;
+using test::operator-;
+using test::operator*;
+inline double dot(D2 a, D2 b) { return test::ddot(a, b); }
+inline double cross(D2 a, D2 b) { return test::dcross(a, b); }
+inline double len(D2 v) { return test::dlen(v); }
 inline D2 unit(D2 v) {
     const double l = len(v);
     return l > 0.0 ? D2{v.x / l, v.y / l} : D2{0.0, 0.0};

@@ -47,6 +47,7 @@ struct D2 {
 inline D2 d2(Vec2 v) { return {v.x, v.y}; }
 inline D2 operator+(D2 a, D2 b) { return {a.x + b.x, a.y + b.y}; }
 inline D2 operator-(D2 a, D2 b) { return {a.x - b.x, a.y - b.y}; }
+inline D2 operator-(D2 a) { return {-a.x, -a.y}; }
 inline D2 operator*(double s, D2 a) { return {s * a.x, s * a.y}; }
 inline double ddot(D2 a, D2 b) { return a.x * b.x + a.y * b.y; }
 inline double dcross(D2 a, D2 b) { return a.x * b.y - a.y * b.x; }

@@ -109,19 +109,20 @@ constexpr int kUnreached = 1 << 30;
 // shock propagation. A counting sort (levels are small), so exactly a stable sort's order.
 template <typename PairAt>
 std::vector<std::uint32_t> ground_up_order(const std::vector<int>& level, std::size_t n, PairAt pair_at) {
+    // First pass: each pair's level (kUnreached kept as is) and the highest reached level;
+    // second: unreached pairs go after it.
     std::vector<std::uint32_t> key(n);
-    int top = 0;
+    std::uint32_t top = 0;
     for (std::size_t k = 0; k < n; ++k) {
         const auto [a, b] = pair_at(k);
         const int l = std::min(level[a], level[b]);
-        if (l != kUnreached) top = std::max(top, l);
+        key[k] = static_cast<std::uint32_t>(l);
+        if (l != kUnreached) top = std::max(top, key[k]);
     }
     std::vector<std::uint32_t> start(static_cast<std::size_t>(top) + 3, 0);
-    for (std::size_t k = 0; k < n; ++k) {
-        const auto [a, b] = pair_at(k);
-        const int l = std::min(level[a], level[b]);
-        key[k] = l == kUnreached ? static_cast<std::uint32_t>(top) + 1 : static_cast<std::uint32_t>(l);
-        ++start[key[k] + 1];
+    for (std::uint32_t& k : key) {
+        if (k == static_cast<std::uint32_t>(kUnreached)) k = top + 1;
+        ++start[k + 1];
     }
     for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
     std::vector<std::uint32_t> order(n);
@@ -182,14 +183,18 @@ std::vector<int> ground_levels(const std::vector<Slot>& slots, const Edges& edge
     return level;
 }
 
-// Under shock propagation the body nearer the ground stands still for the one above it.
+// Under shock propagation the body nearer the ground stands still for the one above it: its
+// inverse mass counts as 0 (for position pushes and velocity impulses alike).
+std::pair<float, float> shock_masses(float ima, float imb, int level_a, int level_b, bool shock) {
+    if (shock && level_a < level_b) ima = 0.0f;
+    if (shock && level_b < level_a) imb = 0.0f;
+    return {ima, imb};
+}
+
 std::pair<float, float> pair_masses(const std::vector<Slot>& slots, const std::vector<int>& level, std::uint32_t a,
                                     std::uint32_t b, bool shock) {
-    float ima = detail::resolution_inverse_mass(slots[a].body);
-    float imb = detail::resolution_inverse_mass(slots[b].body);
-    if (shock && level[a] < level[b]) ima = 0.0f;
-    if (shock && level[b] < level[a]) imb = 0.0f;
-    return {ima, imb};
+    return shock_masses(detail::resolution_inverse_mass(slots[a].body), detail::resolution_inverse_mass(slots[b].body),
+                        level[a], level[b], shock);
 }
 
 VelocityContact velocity_contact(std::uint32_t a, const EntityDesc& ba, std::uint32_t b, const EntityDesc& bb,
@@ -199,9 +204,7 @@ VelocityContact velocity_contact(std::uint32_t a, const EntityDesc& ba, std::uin
 }
 
 void solve_velocity(std::vector<Slot>& slots, const std::vector<int>& level, VelocityContact& vc, bool shock) {
-    // Under shock propagation the body nearer the ground stands still (as in pair_masses).
-    const float ima = shock && level[vc.a] < level[vc.b] ? 0.0f : vc.ima;
-    const float imb = shock && level[vc.b] < level[vc.a] ? 0.0f : vc.imb;
+    const auto [ima, imb] = shock_masses(vc.ima, vc.imb, level[vc.a], level[vc.b], shock);
     const float k = ima + imb;
     if (!(k > 0.0f)) return;
     Slot& sa = slots[vc.a];
