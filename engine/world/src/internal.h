@@ -3,6 +3,7 @@
 // state_hash.cpp.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -53,17 +54,30 @@ Vec2 contact_point(const Shape& a, const Shape& b, const Manifold& m);
 // tie (a box sliding onto the next floor tile), so it takes no velocity response.
 bool corner_touch(const Shape& a, const Shape& b, const Manifold& m);
 
-// Inverse mass as resolution sees it: 0 for everything that is not a dynamic body.
-float resolution_inverse_mass(const EntityDesc& body);
-bool is_moving_kind(BodyKind k);  // kinematic, dynamic, trigger
+// Inverse mass as resolution sees it: 0 for everything that is not a dynamic body. These
+// small predicates are inline: the step asks them for every candidate pair.
+inline float resolution_inverse_mass(const EntityDesc& body) {
+    if (body.kind != BodyKind::dynamic) return 0.0f;
+    const float im = body.inverse_mass;
+    return (std::isfinite(im) && im > 0.0f) ? im : 0.0f;
+}
+inline bool is_moving_kind(BodyKind k) {  // kinematic, dynamic, trigger
+    return k == BodyKind::kinematic || k == BodyKind::dynamic || k == BodyKind::trigger;
+}
 // Velocity as contacts see it: a static body's is zero whatever its velocity field holds.
 inline Vec2 contact_velocity(const EntityDesc& body) {
     return body.kind == BodyKind::static_body ? Vec2{} : body.velocity;
 }
 // Layer bits, `ignore`, and the kinds that never meet (see the MANUAL).
-bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id);
+inline bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id) {
+    if ((a.layer & b.collides_with) == 0 || (b.layer & a.collides_with) == 0) return false;
+    return !(a.ignore == b_id || b.ignore == a_id);
+}
 // Resolution moves one of them: no trigger, and at least one body with inverse mass > 0.
-bool resolvable(const EntityDesc& a, const EntityDesc& b);
+inline bool resolvable(const EntityDesc& a, const EntityDesc& b) {
+    if (a.kind == BodyKind::trigger || b.kind == BodyKind::trigger) return false;
+    return resolution_inverse_mass(a) > 0.0f || resolution_inverse_mass(b) > 0.0f;
+}
 
 }  // namespace detail
 
@@ -96,6 +110,7 @@ struct World::Impl {
     // placed(index) and its bounds, computed only when the body moved or turned since the
     // last call. The reference is valid until the next create().
     const detail::Placement& placement(std::uint32_t index);
+    bool placement_current(std::uint32_t index) const;  // placement(index) would not recompute
     // Brings slot index's turned collider up to date with its collider and angle; called
     // wherever either changes.
     void turn(std::uint32_t index);

@@ -157,13 +157,13 @@ struct EdgesByBody {
 // graph (the shortest distances, so the same levels as relaxing every edge until nothing
 // changes, in linear time). Deterministic: it depends only on the edges.
 template <typename Edges>
-std::vector<int> ground_levels(const std::vector<Slot>& slots, const Edges& edges) {
-    std::vector<int> level(slots.size(), kUnreached);
-    const EdgesByBody by_body(slots.size(), edges);
+std::vector<int> ground_levels(const std::vector<float>& inverse_mass, const Edges& edges) {
+    std::vector<int> level(inverse_mass.size(), kUnreached);
+    const EdgesByBody by_body(inverse_mass.size(), edges);
     std::vector<std::uint32_t> queue;
     for (const auto& [a, b] : edges) {
         for (std::uint32_t i : {a, b}) {
-            if (level[i] != 0 && detail::resolution_inverse_mass(slots[i].body) == 0.0f) {
+            if (level[i] != 0 && inverse_mass[i] == 0.0f) {
                 level[i] = 0;
                 queue.push_back(i);
             }
@@ -191,10 +191,12 @@ std::pair<float, float> shock_masses(float ima, float imb, int level_a, int leve
     return {ima, imb};
 }
 
-std::pair<float, float> pair_masses(const std::vector<Slot>& slots, const std::vector<int>& level, std::uint32_t a,
-                                    std::uint32_t b, bool shock) {
-    return shock_masses(detail::resolution_inverse_mass(slots[a].body), detail::resolution_inverse_mass(slots[b].body),
-                        level[a], level[b], shock);
+// Every body's resolution_inverse_mass, packed: the step's pair loops read it for thousands
+// of pairs, and a body's EntityDesc spans several cache lines.
+std::vector<float> inverse_masses(const std::vector<Slot>& slots) {
+    std::vector<float> out(slots.size());
+    for (std::size_t i = 0; i < slots.size(); ++i) out[i] = detail::resolution_inverse_mass(slots[i].body);
+    return out;
 }
 
 VelocityContact velocity_contact(std::uint32_t a, const EntityDesc& ba, std::uint32_t b, const EntityDesc& bb,
@@ -275,7 +277,7 @@ void World::Impl::integrate(float dt) {
         edges.emplace_back(c.a.index, c.b.index);
     }
     if (!carried.empty()) {
-        solve_velocities(slots, ground_levels(slots, edges), carried, desc.velocity_passes);
+        solve_velocities(slots, ground_levels(inverse_masses(slots), edges), carried, desc.velocity_passes);
         for (Slot& s : slots) s.friction_dv = {};  // friction here acts before the motion
     }
 
@@ -411,13 +413,24 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
 // ---------------------------------------------------------------------------------------
 
 void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::vector<Pair>& pairs, float dt) {
+    // detail::resolvable from packed data: a trigger counts as immovable here.
+    std::vector<float> inverse_mass = inverse_masses(slots);
+    std::vector<float> pushable = inverse_mass;
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+        if (slots[i].body.kind == BodyKind::trigger) pushable[i] = -1.0f;
+    }
+    const auto resolvable = [&](const Pair& p) {
+        const float a = pushable[p.a];
+        const float b = pushable[p.b];
+        return a >= 0.0f && b >= 0.0f && (a > 0.0f || b > 0.0f);
+    };
     std::vector<const NarrowContact*> contacts_in;
     for (const NarrowContact& c : found) {
-        if (detail::resolvable(slots[c.pair.a].body, slots[c.pair.b].body)) contacts_in.push_back(&c);
+        if (resolvable(c.pair)) contacts_in.push_back(&c);
     }
     std::vector<Pair> push_pairs;
     for (const Pair& p : pairs) {
-        if (detail::resolvable(slots[p.a].body, slots[p.b].body)) push_pairs.push_back(p);
+        if (resolvable(p)) push_pairs.push_back(p);
     }
     if (push_pairs.empty()) return;
 
@@ -430,7 +443,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         edges.emplace_back(p.a, p.a);
         edges.emplace_back(p.b, p.b);
     }
-    const std::vector<int> level = ground_levels(slots, edges);
+    const std::vector<int> level = ground_levels(inverse_mass, edges);
 
     // Velocity: new impacts (bounce above the threshold), kept contacts closing their gap.
     std::vector<VelocityContact> vcs;
@@ -538,14 +551,18 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             dirty_ground_up[rank_ground_up[k] / 64] &= ~(std::uint64_t{1} << (rank_ground_up[k] % 64));
             const Pair& p = push_pairs[k];
             if (!touch(boxes[p.a], boxes[p.b])) continue;
-            const detail::Placement& pa = placement(p.a);
-            const detail::Placement& pb = placement(p.b);
+            // Every placement here is current: the broadphase placed every body, and each
+            // push or friction move above re-placed its bodies at once (so no need to check
+            // them against the bodies' positions, a cache miss each).
+            const detail::Placement& pa = placements[p.a];
+            const detail::Placement& pb = placements[p.b];
+            JOSTLE_DEBUG_ASSERT(placement_current(p.a) && placement_current(p.b), "a stale placement in resolve");
             if (!overlaps(pa.box, pb.box)) continue;
             const Shape& a = pa.shape;
             const Shape& b = pb.shape;
             const Manifold m = collide(a, b);
             if (!m.hit || !(m.depth > settled)) continue;
-            const auto [ima, imb] = pair_masses(slots, level, p.a, p.b, shock);
+            const auto [ima, imb] = shock_masses(inverse_mass[p.a], inverse_mass[p.b], level[p.a], level[p.b], shock);
             const float k_sum = ima + imb;
             if (!(k_sum > 0.0f)) continue;  // under shock propagation only a mass can drop to 0
             const Vec2 mtd = m.depth * m.normal;  // moves B out of A

@@ -10,31 +10,6 @@
 
 namespace jostle {
 
-namespace detail {
-
-float resolution_inverse_mass(const EntityDesc& body) {
-    if (body.kind != BodyKind::dynamic) return 0.0f;
-    const float im = body.inverse_mass;
-    return (std::isfinite(im) && im > 0.0f) ? im : 0.0f;
-}
-
-bool is_moving_kind(BodyKind k) {
-    return k == BodyKind::kinematic || k == BodyKind::dynamic || k == BodyKind::trigger;
-}
-
-bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id) {
-    if ((a.layer & b.collides_with) == 0 || (b.layer & a.collides_with) == 0) return false;
-    if (a.ignore == b_id || b.ignore == a_id) return false;
-    return true;
-}
-
-bool resolvable(const EntityDesc& a, const EntityDesc& b) {
-    if (a.kind == BodyKind::trigger || b.kind == BodyKind::trigger) return false;
-    return resolution_inverse_mass(a) > 0.0f || resolution_inverse_mass(b) > 0.0f;
-}
-
-}  // namespace detail
-
 namespace {
 
 std::uint64_t fingerprint(const Collider& c) {
@@ -86,11 +61,17 @@ void World::Impl::turn(std::uint32_t index) {
     placements[index].valid = false;  // the collider may have changed
 }
 
-const detail::Placement& World::Impl::placement(std::uint32_t index) {
+bool World::Impl::placement_current(std::uint32_t index) const {
     const auto same = [](float x, float y) { return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y); };
     const EntityDesc& b = slots[index].body;
+    const detail::Placement& p = placements[index];
+    return p.valid && same(p.position.x, b.position.x) && same(p.position.y, b.position.y) && same(p.angle, b.angle);
+}
+
+const detail::Placement& World::Impl::placement(std::uint32_t index) {
     detail::Placement& p = placements[index];
-    if (!p.valid || !same(p.position.x, b.position.x) || !same(p.position.y, b.position.y) || !same(p.angle, b.angle)) {
+    if (!placement_current(index)) {
+        const EntityDesc& b = slots[index].body;
         p.shape = placed(index);
         p.box = bounds(p.shape);
         p.position = b.position;

@@ -32,3 +32,10 @@ public:
 
 #define JOSTLE_ASSERT(expr, msg) \
     ((expr) ? static_cast<void>(0) : ::jostle::assertion_failed(#expr, __FILE__, __LINE__, (msg)))
+
+// Checked in Debug builds only: invariants a hot path relies on instead of re-checking them.
+#ifdef NDEBUG
+#define JOSTLE_DEBUG_ASSERT(expr, msg) static_cast<void>(0)
+#else
+#define JOSTLE_DEBUG_ASSERT(expr, msg) JOSTLE_ASSERT(expr, msg)
+#endif
