@@ -508,10 +508,17 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         const std::uint32_t r = rank_ground_up[k];
         dirty_ground_up[r / 64] |= std::uint64_t{1} << (r % 64);
     };
+    // A body moved (boxes[i] already holds its new bounds): its pairs whose bounds now touch
+    // become dirty. One whose bounds do not touch would be turned away when visited, unless
+    // one of its bodies moves again first, which marks it then: the same pushes as marking
+    // every pair of the body, without setting and visiting the many that are apart.
     std::vector<bool> moved(slots.size(), false);
     const auto body_moved = [&](std::uint32_t i) {
         moved[i] = true;
-        for (std::uint32_t e = pairs_of.first[i]; e < pairs_of.first[i + 1]; ++e) set_dirty(pairs_of.edge[e]);
+        for (std::uint32_t e = pairs_of.first[i]; e < pairs_of.first[i + 1]; ++e) {
+            const std::uint32_t k = pairs_of.edge[e];
+            if (touch(boxes[push_pairs[k].a], boxes[push_pairs[k].b])) set_dirty(k);
+        }
     };
     // The narrowphase already tested every pair at these positions: dirty are the pairs it
     // found overlapping, and those of bodies friction moved.
@@ -522,13 +529,12 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             set_dirty(static_cast<std::uint32_t>(k));
         }
     }
-    for (std::uint32_t i = 0; i < slots.size(); ++i) {
-        if (friction_moved[i]) body_moved(i);
-    }
     // `boxes` (each body's bounds, packed, from broadphase_pairs) turns away the candidates
     // that do not touch without reaching the placements; friction moved some bodies since.
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
-        if (friction_moved[i]) boxes[i] = placement(i).box;
+        if (!friction_moved[i]) continue;
+        boxes[i] = placement(i).box;
+        body_moved(i);
     }
     // The next dirty position at or after `from` (marks ahead of the cursor are taken in this
     // pass, marks behind it in the next), or n_pairs.
@@ -584,8 +590,8 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             for (const auto& [i, before] : {std::pair{p.a, a_before}, std::pair{p.b, b_before}}) {
                 const Vec2 now = slots[i].body.position;
                 if (std::bit_cast<std::uint64_t>(now) == std::bit_cast<std::uint64_t>(before)) continue;
-                body_moved(i);
                 boxes[i] = placement(i).box;
+                body_moved(i);
             }
             deepest = std::fmax(deepest, m.depth);
         }
