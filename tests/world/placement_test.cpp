@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -94,6 +95,33 @@ TEST(Placement, TwoHalvesAreOneRigidPlacementBitForBit) {
                 ASSERT_TRUE(same(Collider::at(turned, p), expected)) << name_of(c.kind()) << " at angle " << a;
                 ASSERT_TRUE(same(c.placed(p, a), expected)) << name_of(c.kind()) << " at angle " << a;
             }
+        }
+    }
+}
+
+// Collider::place reuses the storage of whatever `out` held before (the world's cached shape):
+// the result must be at()'s, and a polygon's whole object (unused vertex slots included, which
+// the SIMD paths read as zeros) the same bytes.
+TEST(Placement, PlaceIntoAReusedShapeIsAtBitForBit) {
+    std::vector<Collider> all = colliders();
+    const std::vector<Vec2> triangle{{-3, -2}, {4, -1}, {3, 5}};
+    const std::vector<Vec2> other_quad{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    all.push_back(Collider::polygon(*make_polygon(triangle)));
+    all.push_back(Collider::polygon(*make_polygon(other_quad)));
+    Rng rng(7);
+    Shape out;  // carries over from one placement to the next, as a body's cached shape does
+    for (int k = 0; k < 2000; ++k) {
+        const Collider& c = all[rng.below(static_cast<std::uint32_t>(all.size()))];
+        const float a = k % 50 == 0 ? kNan : rng.uniform(-4.0f, 4.0f);
+        Vec2 p{rng.uniform(-3000.0f, 3000.0f), rng.uniform(-3000.0f, 3000.0f)};
+        if (k % 37 == 0) p.x = kInf;
+        if (k % 41 == 0) p.y = 3.4e38f;  // the sum overflows: the empty polygon
+        const Shape turned = c.turned(a);
+        const Shape expected = Collider::at(turned, p);
+        Collider::place(turned, p, out);
+        ASSERT_TRUE(same(out, expected)) << name_of(c.kind()) << " #" << k;
+        if (const auto* poly = std::get_if<Polygon>(&out)) {
+            ASSERT_EQ(std::memcmp(poly, &std::get<Polygon>(expected), sizeof(Polygon)), 0) << "#" << k;
         }
     }
 }

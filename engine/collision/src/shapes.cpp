@@ -107,6 +107,21 @@ Polygon Polygon::moved(Vec2 d) const {
     return out;
 }
 
+void Polygon::moved_into(Vec2 d, Polygon& out) const {
+    if (out.count_ != count_) {
+        out = moved(d);
+        return;
+    }
+    for (int i = 0; i < count_; ++i) {
+        out.points_[i] = points_[i] + d;
+        out.normals_[i] = normals_[i];
+        if (!finite(out.points_[i])) {
+            out = Polygon{};
+            return;
+        }
+    }
+}
+
 Polygon Polygon::transformed(const Transform& xf) const {
     Polygon out = *this;
     for (int i = 0; i < count_; ++i) {

@@ -112,6 +112,17 @@ Shape Collider::at(const Shape& turned, Vec2 position) {
     return std::visit(Move{position}, turned);
 }
 
+void Collider::place(const Shape& turned, Vec2 position, Shape& out) {
+    const auto* poly = std::get_if<Polygon>(&turned);
+    if (poly == nullptr || !is_finite(position)) {
+        out = at(turned, position);
+        return;
+    }
+    auto* out_poly = std::get_if<Polygon>(&out);
+    if (out_poly == nullptr) out_poly = &out.emplace<Polygon>();
+    poly->moved_into(position, *out_poly);
+}
+
 const char* name_of(BodyKind k) {
     switch (k) {
         case BodyKind::static_body: return "static";

@@ -71,8 +71,13 @@ bool World::Impl::placement_current(std::uint32_t index) const {
 const detail::Placement& World::Impl::placement(std::uint32_t index) {
     detail::Placement& p = placements[index];
     if (!placement_current(index)) {
-        const EntityDesc& b = slots[index].body;
-        p.shape = placed(index);
+        const detail::Slot& s = slots[index];
+        const EntityDesc& b = s.body;
+        if (s.turned_valid && std::bit_cast<std::uint32_t>(s.turned_angle) == std::bit_cast<std::uint32_t>(b.angle)) {
+            Collider::place(s.turned, b.position, p.shape);  // placed(index), built in place
+        } else {
+            p.shape = placed(index);
+        }
         p.box = bounds(p.shape);
         p.position = b.position;
         p.angle = b.angle;

@@ -196,6 +196,9 @@ public:
     // keeps convexity, winding and unit normals). A result with a non-finite coordinate is
     // the empty polygon.
     Polygon moved(Vec2 d) const;
+    // out = moved(d), writing only the vertices in use when out already has this count
+    // (every Polygon keeps its unused slots zero, so the result is the same object).
+    void moved_into(Vec2 d, Polygon& out) const;
     Polygon transformed(const Transform& xf) const;
     // Rotated by q about the origin: rotated(xf.q).moved(xf.p) is transformed(xf), bit for
     // bit (the world turns a collider once per angle and moves it for each placement).

@@ -170,6 +170,9 @@ public:
     // for bit.
     Shape turned(float angle) const;
     static Shape at(const Shape& turned, Vec2 position);
+    // out = at(turned, position), reusing out's storage (a polygon's vertices are written in
+    // place rather than copied three times through temporaries).
+    static void place(const Shape& turned, Vec2 position, Shape& out);
 
 private:
     Shape shape_ = Circle{};
