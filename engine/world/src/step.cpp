@@ -205,46 +205,70 @@ VelocityContact velocity_contact(std::uint32_t a, const EntityDesc& ba, std::uin
             detail::resolution_inverse_mass(bb)};
 }
 
-void solve_velocity(std::vector<Slot>& slots, const std::vector<int>& level, VelocityContact& vc, bool shock) {
+// A body's velocity state, packed for the solver's passes: each contact reads and writes
+// two bodies many times, and an EntityDesc spans several cache lines.
+struct Motion {
+    Vec2 velocity;
+    Vec2 friction_dv;
+    bool still = false;  // a static body: its contact velocity is zero (detail::contact_velocity)
+};
+
+Vec2 contact_velocity(const Motion& m) { return m.still ? Vec2{} : m.velocity; }
+
+void solve_velocity(std::vector<Motion>& motion, const std::vector<int>& level, VelocityContact& vc, bool shock) {
     const auto [ima, imb] = shock_masses(vc.ima, vc.imb, level[vc.a], level[vc.b], shock);
     const float k = ima + imb;
     if (!(k > 0.0f)) return;
-    Slot& sa = slots[vc.a];
-    Slot& sb = slots[vc.b];
+    Motion& sa = motion[vc.a];
+    Motion& sb = motion[vc.b];
     const Vec2 n = vc.normal;
-    const float vn = dot(detail::contact_velocity(sb.body) - detail::contact_velocity(sa.body), n);
+    const float vn = dot(contact_velocity(sb) - contact_velocity(sa), n);
     const float total = std::fmax(vc.normal_impulse + (vc.target - vn) / k, 0.0f);
     const float dn = total - vc.normal_impulse;
     vc.normal_impulse = total;
-    sa.body.velocity -= (ima * dn) * n;
-    sb.body.velocity += (imb * dn) * n;
+    sa.velocity -= (ima * dn) * n;
+    sb.velocity += (imb * dn) * n;
     // Friction along the tangent, bounded by the normal impulse (Coulomb).
     const Vec2 t = perp(n);
-    const float vt = dot(detail::contact_velocity(sb.body) - detail::contact_velocity(sa.body), t);
+    const float vt = dot(contact_velocity(sb) - contact_velocity(sa), t);
     const float limit = vc.friction * vc.normal_impulse;
     const float total_t = std::clamp(vc.tangent_impulse - vt / k, -limit, limit);
     const float dt_impulse = total_t - vc.tangent_impulse;
     vc.tangent_impulse = total_t;
     const Vec2 dva = -(ima * dt_impulse) * t;
     const Vec2 dvb = (imb * dt_impulse) * t;
-    sa.body.velocity += dva;
-    sb.body.velocity += dvb;
+    sa.velocity += dva;
+    sb.velocity += dvb;
     sa.friction_dv += dva;
     sb.friction_dv += dvb;
 }
 
 // `passes` passes in the given order; the last one goes ground up with shock propagation,
-// so a resting stack ends still.
+// so a resting stack ends still. The contacts' bodies are solved in a packed copy of their
+// velocities, written back at the end (the same operations on the same values).
 void solve_velocities(std::vector<Slot>& slots, const std::vector<int>& level, std::vector<VelocityContact>& vcs,
                       int passes) {
     const std::vector<std::uint32_t> ground_up =
         ground_up_order(level, vcs.size(), [&](std::size_t k) { return std::pair{vcs[k].a, vcs[k].b}; });
+    std::vector<Motion> motion(slots.size());
+    for (const VelocityContact& vc : vcs) {
+        for (const std::uint32_t i : {vc.a, vc.b}) {
+            const Slot& s = slots[i];
+            motion[i] = {s.body.velocity, s.friction_dv, s.body.kind == BodyKind::static_body};
+        }
+    }
     passes = std::max(passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         if (pass == passes - 1 && passes > 1) {
-            for (const std::uint32_t k : ground_up) solve_velocity(slots, level, vcs[k], true);
+            for (const std::uint32_t k : ground_up) solve_velocity(motion, level, vcs[k], true);
         } else {
-            for (VelocityContact& vc : vcs) solve_velocity(slots, level, vc, false);
+            for (VelocityContact& vc : vcs) solve_velocity(motion, level, vc, false);
+        }
+    }
+    for (const VelocityContact& vc : vcs) {
+        for (const std::uint32_t i : {vc.a, vc.b}) {
+            slots[i].body.velocity = motion[i].velocity;
+            slots[i].friction_dv = motion[i].friction_dv;
         }
     }
 }
