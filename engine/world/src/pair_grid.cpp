@@ -3,6 +3,7 @@
 #include "pair_grid.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -203,11 +204,28 @@ std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_
             return bucket_of(x, y, mask);
         }
     };
-    starts_.assign(buckets + 1, 0);
+    // A dense grid puts a box of up to 2 x 2 cells (most) in four buckets without a branch
+    // on its shape: the cells it lacks go to a spare bucket past the last, never searched.
+    const std::uint32_t spare = buckets;
+    const auto small = [](const Cells& c) {
+        return (static_cast<std::uint32_t>(c.x1 - c.x0) | static_cast<std::uint32_t>(c.y1 - c.y0)) <= 1;
+    };
+    const auto four = [&](const Cells& c) {
+        const std::uint32_t b = bucket_at(c.x0, c.y0);
+        const auto wide = 0u - static_cast<std::uint32_t>(c.x1 - c.x0);  // all ones or none
+        const auto tall = 0u - static_cast<std::uint32_t>(c.y1 - c.y0);
+        return std::array<std::uint32_t, 4>{b, spare ^ ((spare ^ (b + 1)) & wide), spare ^ ((spare ^ (b + width)) & tall),
+                                            spare ^ ((spare ^ (b + width + 1)) & wide & tall)};
+    };
+    starts_.assign(buckets + 2, 0);
     if constexpr (!kDense) bucket_of_entry_.resize(entry_count);
     std::size_t next = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         const Cells& c = cells_[i];
+        if (kDense && small(c)) {
+            for (const std::uint32_t b : four(c)) ++starts_[b + 1];
+            continue;
+        }
         for (std::int32_t y = c.y0; y <= c.y1 && c.x0 <= c.x1; ++y) {
             for (std::int32_t x = c.x0; x <= c.x1; ++x) {
                 const std::uint32_t bucket = bucket_at(x, y);
@@ -216,14 +234,23 @@ std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_
             }
         }
     }
-    for (std::uint32_t k = 0; k < buckets; ++k) starts_[k + 1] += starts_[k];
-    entries_.resize(entry_count);
+    for (std::uint32_t k = 0; k <= buckets; ++k) starts_[k + 1] += starts_[k];
+    entries_.resize(starts_[buckets + 1]);
     if constexpr (!kDense) entry_cells_.resize(entry_count);
     fill_.assign(starts_.begin(), starts_.end() - 1);
     next = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         const Cells& c = cells_[i];
         const std::uint32_t active = items[i].active ? kActive : 0u;
+        if (kDense && small(c)) {
+            const std::array<std::uint32_t, 4> b = four(c);
+            const std::uint32_t bits = i | active;
+            entries_[fill_[b[0]]++] = bits | kFirstColumn | kFirstRow;
+            entries_[fill_[b[1]]++] = bits | kFirstRow;
+            entries_[fill_[b[2]]++] = bits | kFirstColumn;
+            entries_[fill_[b[3]]++] = bits;
+            continue;
+        }
         for (std::int32_t y = c.y0; y <= c.y1 && c.x0 <= c.x1; ++y) {
             for (std::int32_t x = c.x0; x <= c.x1; ++x) {
                 std::uint32_t bucket = 0;
