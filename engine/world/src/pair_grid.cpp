@@ -244,11 +244,11 @@ std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_
         const std::uint32_t active = items[i].active ? kActive : 0u;
         if (kDense && small(c)) {
             const std::array<std::uint32_t, 4> b = four(c);
-            const std::uint32_t bits = i | active;
-            entries_[fill_[b[0]]++] = bits | kFirstColumn | kFirstRow;
-            entries_[fill_[b[1]]++] = bits | kFirstRow;
-            entries_[fill_[b[2]]++] = bits | kFirstColumn;
-            entries_[fill_[b[3]]++] = bits;
+            const std::uint32_t item = i | active;
+            entries_[fill_[b[0]]++] = item | kFirstColumn | kFirstRow;
+            entries_[fill_[b[1]]++] = item | kFirstRow;
+            entries_[fill_[b[2]]++] = item | kFirstColumn;
+            entries_[fill_[b[3]]++] = item;
             continue;
         }
         for (std::int32_t y = c.y0; y <= c.y1 && c.x0 <= c.x1; ++y) {
