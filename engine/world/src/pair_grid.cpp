@@ -87,9 +87,11 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
     if (n < 2) return;
     JOSTLE_ASSERT(n <= kOrdinal + 1, "PairGrid: at most 2^29 items");
 
-    // Cell size: about a typical box's larger extent. Then each box spans about four cells
-    // and each cell holds about as many boxes as touch one. Typical: the mean of the extents
-    // up to four times the plain mean, so that a few long walls do not set it.
+    // Cell size: 1.5 times a typical box's larger extent. Then each box spans at most four
+    // cells unless it is half as large again as typical (those four are filled without a
+    // branch on the box's shape, below), and each cell holds a few boxes. Typical: the mean of
+    // the extents up to four times the plain mean, so that a few long walls do not set it.
+    // (1.0 and 1.25 times were 18% and 3% slower on BM_Broadphase's boxes, 1.75 the same.)
     const auto extent = [&](std::uint32_t i) {  // in double: a finite box can be wider than FLT_MAX
         const Aabb& b = items[i].box;
         const double w = static_cast<double>(b.max.x) - b.min.x;
@@ -115,7 +117,7 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
             ++kept;
         }
     }
-    const double size = std::fmax(kept > 0 ? kept_sum / kept : 1.0, 1e-3);
+    const double size = std::fmax(1.5 * (kept > 0 ? kept_sum / kept : 1.0), 1e-3);
     const double inverse_size = 1.0 / size;
 
     cells_.resize(n);
