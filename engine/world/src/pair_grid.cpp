@@ -6,6 +6,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -21,15 +22,31 @@ namespace {
 constexpr std::int64_t kMaxCellsPerItem = 64;
 // Cell coordinates are clamped here, far inside int32: clamping keeps the mapping monotonic,
 // so overlapping boxes still share a cell (far-away boxes just share more).
-constexpr double kMaxCell = 1 << 30;
+constexpr float kMaxCell = 1 << 30;
 
-// floor(v * inverse_size), clamped: truncation, one down for negative fractions (std::floor
-// is a library call without SSE4.1).
-std::int32_t cell_of(float v, double inverse_size) {
-    const double c = std::clamp(static_cast<double>(v) * inverse_size, -kMaxCell, kMaxCell);
-    const auto t = static_cast<std::int32_t>(c);
-    return t - static_cast<std::int32_t>(c < static_cast<double>(t));
+// A box's cells: floor(coordinate * inverse_size), clamped, in float (any monotonic mapping
+// keeps overlapping boxes in a shared cell; cells only decide which pairs are tested).
+// Truncation, then one down where that rounded up: exact, as a float beyond 2^23 is whole.
+#if defined(__SSE2__)
+void cells_of(const Aabb& b, float inverse_size, std::int32_t* cells) {
+    float v[4];
+    std::memcpy(v, &b, sizeof v);
+    const __m128 limit = _mm_set1_ps(kMaxCell);
+    const __m128 t = _mm_min_ps(_mm_max_ps(_mm_mul_ps(_mm_loadu_ps(v), _mm_set1_ps(inverse_size)), _mm_sub_ps(_mm_setzero_ps(), limit)), limit);
+    const __m128i c = _mm_cvttps_epi32(t);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(cells), _mm_add_epi32(c, _mm_castps_si128(_mm_cmplt_ps(t, _mm_cvtepi32_ps(c)))));
 }
+#else
+void cells_of(const Aabb& b, float inverse_size, std::int32_t* cells) {
+    const float v[4] = {b.min.x, b.min.y, b.max.x, b.max.y};
+    for (int k = 0; k < 4; ++k) {
+        const float t = std::min(std::max(v[k] * inverse_size, -kMaxCell), kMaxCell);
+        const auto c = static_cast<std::int32_t>(t);
+        cells[k] = c - static_cast<std::int32_t>(t < static_cast<float>(c));
+    }
+}
+#endif
+static_assert(sizeof(Aabb) == 4 * sizeof(float));
 
 // Neighbouring cells land in unrelated buckets (a multiplicative hash, then its high bits
 // mixed down).
@@ -118,7 +135,7 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
         }
     }
     const double size = std::fmax(1.5 * (kept > 0 ? kept_sum / kept : 1.0), 1e-3);
-    const double inverse_size = 1.0 / size;
+    const auto inverse = static_cast<float>(1.0 / size);
 
     cells_.resize(n);
     boxes_.resize(n);
@@ -130,9 +147,10 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
     for (std::uint32_t i = 0; i < n; ++i) {
         const Aabb& b = items[i].box;
         boxes_[i] = {{b.min.x, b.min.y, -b.max.x, -b.max.y}};
+        std::int32_t at[4];
+        cells_of(b, inverse, at);
         Cells& c = cells_[i];
-        c = {cell_of(b.min.x, inverse_size), cell_of(b.min.y, inverse_size), cell_of(b.max.x, inverse_size),
-             cell_of(b.max.y, inverse_size)};
+        c = {at[0], at[1], at[2], at[3]};
         const std::int64_t count = (std::int64_t{c.x1} - c.x0 + 1) * (std::int64_t{c.y1} - c.y0 + 1);
         if (count > kMaxCellsPerItem) {
             big_.push_back(i);
