@@ -99,9 +99,11 @@ bool touch(const Reversed& e, const float* f) {
 void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out) { find(items, out, BigQuery{}); }
 
 void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out, const BigQuery& big_query) {
-    out.clear();
     const auto n = static_cast<std::uint32_t>(items.size());
-    if (n < 2) return;
+    if (n < 2) {
+        out.clear();
+        return;
+    }
     JOSTLE_ASSERT(n <= kOrdinal + 1, "PairGrid: at most 2^29 items");
 
     // Cell size: 1.5 times a typical box's larger extent. Then each box spans at most four
@@ -170,12 +172,15 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
     // (a crowd), else cells hashed into buckets (boxes spread thinly, far apart).
     const bool dense = entry_count > 0 && (std::int64_t{region.x1} - region.x0 + 1) * (std::int64_t{region.y1} - region.y0 + 1) <=
                                               2 * static_cast<std::int64_t>(entry_count) + 64;
-    keys_.resize(dense ? gather<true>(items, entry_count, region, bits) : gather<false>(items, entry_count, region, bits));
+    // keys_ is a buffer that only grows (growing a vector zeroes the new part): its first
+    // `keys` are the pairs.
+    std::size_t keys = dense ? gather<true>(items, entry_count, region, bits) : gather<false>(items, entry_count, region, bits);
     const auto big = [&](std::uint32_t j) { return cells_[j].x0 > cells_[j].x1; };
     const auto pair_with = [&](std::uint32_t i, std::uint32_t j) {
         if (j == i || (j < i && big(j))) return;
         if ((items[i].active || items[j].active) && touch(items[i].box, items[j].box)) {
-            keys_.push_back(i < j ? (std::uint64_t{i} << bits) | j : (std::uint64_t{j} << bits) | i);
+            if (keys == keys_.size()) keys_.resize(2 * keys + 16);
+            keys_[keys++] = i < j ? (std::uint64_t{i} << bits) | j : (std::uint64_t{j} << bits) | i;
         }
     };
     for (const std::uint32_t i : big_) {
@@ -183,20 +188,22 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
             for (std::uint32_t j = 0; j < n; ++j) pair_with(i, j);
             continue;
         }
-        const std::size_t first = keys_.size();
+        const std::size_t first = keys;
         big_query(items[i].box, [&](std::uint32_t id) {
             const auto it = std::lower_bound(items.begin(), items.end(), id,
                                              [](const GridItem& item, std::uint32_t v) { return item.id < v; });
             if (it != items.end() && it->id == id) pair_with(i, static_cast<std::uint32_t>(it - items.begin()));
         });
         // A query may report an item twice; keep each pair once.
-        std::sort(keys_.begin() + static_cast<std::ptrdiff_t>(first), keys_.end());
-        keys_.erase(std::unique(keys_.begin() + static_cast<std::ptrdiff_t>(first), keys_.end()), keys_.end());
+        const auto from = keys_.begin() + static_cast<std::ptrdiff_t>(first);
+        const auto to = keys_.begin() + static_cast<std::ptrdiff_t>(keys);
+        std::sort(from, to);
+        keys = static_cast<std::size_t>(std::unique(from, to) - keys_.begin());
     }
-    sort_keys(n, bits);
-    out.resize(keys_.size());
+    sort_keys(n, bits, keys);
+    out.resize(keys);
     const std::uint64_t low = (std::uint64_t{1} << bits) - 1;
-    for (std::size_t k = 0; k < keys_.size(); ++k) {
+    for (std::size_t k = 0; k < keys; ++k) {
         out[k] = {items[keys_[k] >> bits].id, items[keys_[k] & low].id};
     }
 }
@@ -317,29 +324,31 @@ std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_
     return count;
 }
 
-// keys_ in order: counting sort by the lower item, then an insertion sort, which only has
-// to order each item's few partners (bounded: a crowd's long runs go to std::sort instead).
-void PairGrid::sort_keys(std::uint32_t n, int bits) {
-    if (keys_.size() < 256) {
-        std::sort(keys_.begin(), keys_.end());
+// The first `count` keys_ in order: counting sort by the lower item, then an insertion
+// sort, which only has to order each item's few partners (bounded: a crowd's long runs go to
+// std::sort instead).
+void PairGrid::sort_keys(std::uint32_t n, int bits, std::size_t count) {
+    const auto end = keys_.begin() + static_cast<std::ptrdiff_t>(count);
+    if (count < 256) {
+        std::sort(keys_.begin(), end);
         return;
     }
     fill_.assign(n + 1, 0);
-    for (const std::uint64_t k : keys_) ++fill_[(k >> bits) + 1];
+    for (std::size_t k = 0; k < count; ++k) ++fill_[(keys_[k] >> bits) + 1];
     for (std::uint32_t i = 0; i < n; ++i) fill_[i + 1] += fill_[i];
-    sorted_.resize(keys_.size());
-    for (const std::uint64_t k : keys_) sorted_[fill_[k >> bits]++] = k;
+    if (sorted_.size() < keys_.size()) sorted_.resize(keys_.size());
+    for (std::size_t k = 0; k < count; ++k) sorted_[fill_[keys_[k] >> bits]++] = keys_[k];
     keys_.swap(sorted_);
     std::size_t moves = 0;
-    for (std::size_t k = 1; k < keys_.size(); ++k) {
+    for (std::size_t k = 1; k < count; ++k) {
         const std::uint64_t key = keys_[k];
         if (keys_[k - 1] <= key) continue;
         std::size_t m = k;
         for (; m > 0 && keys_[m - 1] > key; --m) keys_[m] = keys_[m - 1];
         keys_[m] = key;
         moves += k - m;
-        if (moves > 4 * keys_.size()) {
-            std::sort(keys_.begin(), keys_.end());
+        if (moves > 4 * count) {
+            std::sort(keys_.begin(), keys_.begin() + static_cast<std::ptrdiff_t>(count));
             return;
         }
     }

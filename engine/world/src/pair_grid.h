@@ -66,7 +66,7 @@ private:
     std::vector<std::uint64_t> sorted_;   // the sort's other buffer
     template <bool kDense>
     std::size_t gather(std::span<const GridItem> items, std::size_t entry_count, const Cells& region, int bits);
-    void sort_keys(std::uint32_t n, int bits);
+    void sort_keys(std::uint32_t n, int bits, std::size_t count);
 };
 
 }  // namespace jostle::detail
