@@ -1,5 +1,5 @@
-// PairGrid (see pair_grid.h): a uniform grid hashed into buckets, built by counting sort; pairs
-// gathered bucket by bucket, then radix-sorted.
+// PairGrid (see pair_grid.h): a uniform grid, dense over a crowd or hashed into buckets, built
+// by counting sort; pairs gathered cell by cell, then sorted by their lower item.
 #include "pair_grid.h"
 
 #include <algorithm>
@@ -32,9 +32,11 @@ void cells_of(const Aabb& b, float inverse_size, std::int32_t* cells) {
     float v[4];
     std::memcpy(v, &b, sizeof v);
     const __m128 limit = _mm_set1_ps(kMaxCell);
-    const __m128 t = _mm_min_ps(_mm_max_ps(_mm_mul_ps(_mm_loadu_ps(v), _mm_set1_ps(inverse_size)), _mm_sub_ps(_mm_setzero_ps(), limit)), limit);
+    const __m128 scaled = _mm_mul_ps(_mm_loadu_ps(v), _mm_set1_ps(inverse_size));
+    const __m128 t = _mm_min_ps(_mm_max_ps(scaled, _mm_sub_ps(_mm_setzero_ps(), limit)), limit);
     const __m128i c = _mm_cvttps_epi32(t);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(cells), _mm_add_epi32(c, _mm_castps_si128(_mm_cmplt_ps(t, _mm_cvtepi32_ps(c)))));
+    const __m128i down = _mm_castps_si128(_mm_cmplt_ps(t, _mm_cvtepi32_ps(c)));  // -1 where c > t
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(cells), _mm_add_epi32(c, down));
 }
 #else
 void cells_of(const Aabb& b, float inverse_size, std::int32_t* cells) {
@@ -170,11 +172,14 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
     const int bits = std::bit_width(n - 1);
     // A dense grid over the entries' region when it has at most about two cells per entry
     // (a crowd), else cells hashed into buckets (boxes spread thinly, far apart).
-    const bool dense = entry_count > 0 && (std::int64_t{region.x1} - region.x0 + 1) * (std::int64_t{region.y1} - region.y0 + 1) <=
-                                              2 * static_cast<std::int64_t>(entry_count) + 64;
+    const std::int64_t region_cells =
+        (std::int64_t{region.x1} - region.x0 + 1) * (std::int64_t{region.y1} - region.y0 + 1);
+    const bool dense = entry_count > 0 && region_cells <= 2 * static_cast<std::int64_t>(entry_count) + 64 &&
+                       region_cells <= (1 << 30);
     // keys_ is a buffer that only grows (growing a vector zeroes the new part): its first
     // `keys` are the pairs.
-    std::size_t keys = dense ? gather<true>(items, entry_count, region, bits) : gather<false>(items, entry_count, region, bits);
+    std::size_t keys = dense ? gather<true>(items, entry_count, region, bits)
+                             : gather<false>(items, entry_count, region, bits);
     const auto big = [&](std::uint32_t j) { return cells_[j].x0 > cells_[j].x1; };
     const auto pair_with = [&](std::uint32_t i, std::uint32_t j) {
         if (j == i || (j < i && big(j))) return;
@@ -212,7 +217,8 @@ void PairGrid::find(std::span<const GridItem> items, std::vector<GridPair>& out,
 // may hold several cells), by counting sort so that each lists its entries in ascending item
 // order; then the pairs, cell by cell, written to keys_ from 0. Returns how many.
 template <bool kDense>
-std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_count, const Cells& region, int bits) {
+std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_count, const Cells& region,
+                             int bits) {
     const auto n = static_cast<std::uint32_t>(items.size());
     const auto width = static_cast<std::uint32_t>(region.x1 - region.x0 + 1);  // dense only
     std::uint32_t buckets = 0;
@@ -241,7 +247,8 @@ std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_
         const std::uint32_t b = bucket_at(c.x0, c.y0);
         const auto wide = 0u - static_cast<std::uint32_t>(c.x1 - c.x0);  // all ones or none
         const auto tall = 0u - static_cast<std::uint32_t>(c.y1 - c.y0);
-        return std::array<std::uint32_t, 4>{b, spare ^ ((spare ^ (b + 1)) & wide), spare ^ ((spare ^ (b + width)) & tall),
+        return std::array<std::uint32_t, 4>{b, spare ^ ((spare ^ (b + 1)) & wide),
+                                            spare ^ ((spare ^ (b + width)) & tall),
                                             spare ^ ((spare ^ (b + width + 1)) & wide & tall)};
     };
     starts_.assign(buckets + 2, 0);
