@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -170,6 +171,31 @@ TEST(PairGrid, ManyItemsCrowdedCellsAndBigItemsThroughAQuery) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
     for (const GridPair& p : found) got.emplace_back(p.a, p.b);
     EXPECT_EQ(got, expected);
+}
+
+// The grid is dense over a crowd (a cell for every spot of the boxes' region) and hashed when
+// the boxes are spread thinly (here: the same crowd and one box far away); boxes of up to
+// 2 x 2 cells take a branch-free path, larger ones the general one. Every way gives brute
+// force's pairs.
+TEST(PairGrid, DenseAndHashedGridsAndBoxesOfEveryCellSpan) {
+    Rng rng(29);
+    std::vector<GridItem> crowd;
+    for (std::uint32_t k = 0; k < 3000; ++k) {
+        const float size = rng.below(8) == 0 ? 30.0f : 10.0f;  // some span 3 or more cells
+        const Vec2 half{rng.uniform(0.0f, size), rng.uniform(0.0f, size)};
+        Vec2 centre{rng.uniform(-400.0f, 400.0f), rng.uniform(-400.0f, 400.0f)};
+        if (rng.below(4) == 0) centre = {std::floor(centre.x / 8.0f) * 8.0f, std::floor(centre.y / 8.0f) * 8.0f};
+        crowd.push_back({box_at(centre, half), 2 * k + 1, rng.below(6) != 0});
+    }
+    std::vector<GridItem> spread = crowd;
+    spread.push_back({box_at({3e7f, -2e7f}, {5, 5}), 1u << 20, true});
+    spread.push_back({box_at({3e7f, -2e7f}, {1, 1}), (1u << 20) + 1, false});
+    PairGrid grid;
+    for (const std::vector<GridItem>* items : {&crowd, &spread, &crowd}) {
+        const auto expected = brute_force(*items);
+        ASSERT_GT(expected.size(), 1000u);
+        EXPECT_EQ(grid_pairs(grid, *items), expected);
+    }
 }
 
 // Over the broadphase's fat bounds the grid finds what a tree query from each moving body

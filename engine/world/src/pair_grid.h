@@ -47,21 +47,26 @@ private:
     struct Cells {
         std::int32_t x0, y0, x1, y1;
     };
-    // One item in one cell, 16 bytes: the counting sort scatters these, so they are kept
-    // small; the pair test reads the boxes from the items (a few hundred kB, in cache).
-    struct Entry {
-        std::uint64_t cell;  // x in the low half, y in the high half
-        std::uint32_t bits;  // the item's ordinal, then kFirstColumn, kFirstRow, kActive
+    // A box as the pair test compares it: (min.x, min.y, -max.x, -max.y), so that one
+    // four-lane compare tests all four sides (negation is exact).
+    struct alignas(16) TestBox {
+        float v[4];
     };
     std::vector<Cells> cells_;            // per item
+    std::vector<TestBox> boxes_;          // per item
     std::vector<std::uint32_t> big_;      // items spanning too many cells: tested against all
-    std::vector<std::uint32_t> starts_;   // per hash bucket, into entries_ (counting sort)
-    std::vector<Entry> entries_;
+    std::vector<std::uint32_t> starts_;   // per cell or hash bucket, into entries_ (counting sort)
+    // One item in one cell: the item's ordinal, then kFirstColumn, kFirstRow, kActive. Kept
+    // to 4 bytes because the counting sort scatters them.
+    std::vector<std::uint32_t> entries_;
+    std::vector<std::uint64_t> entry_cells_;      // hashed grids only: each entry's cell
     std::vector<std::uint32_t> fill_;     // counting sorts' positions
-    std::vector<std::uint32_t> bucket_of_entry_;  // in the order entries are made
+    std::vector<std::uint32_t> bucket_of_entry_;  // hashed grids only, in the order entries are made
     std::vector<std::uint64_t> keys_;     // pairs found, as (lower item, higher item)
-    std::vector<std::uint64_t> sorted_;   // the radix sort's other buffer
-    void sort_keys(int bits);
+    std::vector<std::uint64_t> sorted_;   // the sort's other buffer
+    template <bool kDense>
+    std::size_t gather(std::span<const GridItem> items, std::size_t entry_count, const Cells& region, int bits);
+    void sort_keys(std::uint32_t n, int bits, std::size_t count);
 };
 
 }  // namespace jostle::detail
