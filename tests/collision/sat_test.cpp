@@ -311,6 +311,54 @@ TEST(SatPolygon, Avx2AndSsePathsGiveTheSameAnswers) {
     EXPECT_GT(hits, 2000);
 }
 
+// The same past the limits: polygons scaled and moved until separations overflow to +-inf
+// or NaN (a miss, or a depth that is not finite), where the 8-face path takes its face from
+// a lane mask rather than a loop. (make_polygon refuses edges whose cross products
+// overflow, so the sizes stay below about 1e19, and moved() takes them far away.)
+TEST(SatPolygon, Avx2AndSsePathsAgreePastTheLimits) {
+    if (!detail::use_avx2_paths(true)) GTEST_SKIP() << "this CPU has no AVX2: the SSE path is the only one";
+    const auto bits = [](float v) { return std::bit_cast<std::uint32_t>(v); };
+    const float scales[] = {1.0f, 1e6f, 1e17f, 1e18f};
+    const float shifts[] = {0.0f, 1e30f, 1.7e38f, 2e38f, -2e38f};
+    Rng rng(0x51c3u);
+    int compared = 0;
+    for (int n = 0; n < 4000; ++n) {
+        const float scale = scales[rng.below(4)], shift_a = shifts[rng.below(5)], shift_b = shifts[rng.below(5)];
+        const auto big = [&](const Polygon& p, float shift) -> std::optional<Polygon> {
+            std::vector<Vec2> pts;
+            for (const Vec2 v : p.points()) pts.push_back(v * scale);
+            const auto scaled = make_polygon(pts);
+            if (!scaled) return std::nullopt;
+            const Polygon moved = scaled->moved({shift, -shift});  // may round vertices together
+            if (moved.count() == 0) return std::nullopt;
+            return moved;
+        };
+        const Polygon pa = test::random_polygon(rng, 10.0f), pb = n % 7 == 0 ? pa : test::random_polygon(rng, 10.0f);
+        const auto a = big(pa, shift_a), b = big(pb, shift_b);
+        if (!a || !b) continue;
+        ASSERT_TRUE(detail::use_avx2_paths(true));
+        const Manifold on = collide(*a, *b);
+        const ContactSet on_c = contacts(*a, *b);
+        detail::use_avx2_paths(false);
+        const Manifold off = collide(*a, *b);
+        const ContactSet off_c = contacts(*a, *b);
+        SCOPED_TRACE(testing::Message() << "pair " << n);
+        EXPECT_EQ(on.hit, off.hit);
+        EXPECT_EQ(bits(on.depth), bits(off.depth));
+        EXPECT_EQ(bits(on.normal.x), bits(off.normal.x));
+        EXPECT_EQ(bits(on.normal.y), bits(off.normal.y));
+        EXPECT_EQ(on_c.count, off_c.count);
+        for (int k = 0; k < on_c.count && k < off_c.count; ++k) {
+            EXPECT_EQ(bits(on_c.points[static_cast<std::size_t>(k)].x), bits(off_c.points[static_cast<std::size_t>(k)].x));
+            EXPECT_EQ(bits(on_c.points[static_cast<std::size_t>(k)].y), bits(off_c.points[static_cast<std::size_t>(k)].y));
+        }
+        ++compared;
+        if (HasFailure()) break;
+    }
+    detail::use_avx2_paths(true);
+    EXPECT_GT(compared, 1000);
+}
+
 TEST(SatPolygonSegment, SegmentCrossingASquare) {
     // A = [0,4]^2, segment x = 3 from y = -1 to 5. x: min(4-3, 3-0) = 1; y: min(4+1, 5-0) = 5.
     const Polygon a = test::box_polygon(0, 0, 4, 4);
