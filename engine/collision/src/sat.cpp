@@ -302,7 +302,7 @@ struct PolygonContact {
     int face = 0;
 };
 
-PolygonContact polygon_polygon(Convex a, Convex b, Vec2 offset) {
+[[gnu::noinline]] PolygonContact polygon_polygon(Convex a, Convex b, Vec2 offset) {
     const int na = a.count, nb = b.count;
     // B's points shifted; with no shift, B's own (adding a zero could only turn a -0 into +0,
     // which no separation can tell apart).
