@@ -128,8 +128,11 @@ inline BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
     // The first axis whose push is the least (a later one wins only when strictly smaller).
     out.axis = std::countr_zero(detail::lane_bits(push == best));
     out.positive = pos[out.axis] != 0;
-    const Vec2 u{ux[out.axis], uy[out.axis]};
-    out.manifold = detail::hit_with(best, out.positive ? u : -u);
+    // Every axis's normal, +u or -u (a sign flip), then the MTD's: no branch on the sign.
+    const Float4 minus_zero = {-0.0f, -0.0f, -0.0f, -0.0f};
+    const Float4 signs = pos ? Float4{} : minus_zero;
+    const Float4 nx = detail::bit_xor(ux, signs), ny = detail::bit_xor(uy, signs);
+    out.manifold = detail::hit_with(best, {nx[out.axis], ny[out.axis]});
     return out;
 }
 }  // namespace
