@@ -357,8 +357,9 @@ bool fits_one_group(const Polygon& a, const Polygon& b) {
 
 // The smallest separation of the points from each of the 8 faces (n, p): the loop of
 // max_face_separation_avx.
-[[gnu::target("avx2"), gnu::always_inline]] inline Float8 min_separations8(Float8 nx, Float8 ny, Float8 px, Float8 py,
-                                                                          const Vec2* others, int other_count) {
+[[gnu::target("avx2"), gnu::always_inline]] inline Float8 min_separations8(Float8 nx, Float8 ny, Float8 px,
+                                                                          Float8 py, const Vec2* others,
+                                                                          int other_count) {
     Float8 s = nx * (others[0].x - px) + ny * (others[0].y - py);
     for (int j = 1; j < other_count; ++j) {
         const Float8 d = nx * (others[j].x - px) + ny * (others[j].y - py);
@@ -367,10 +368,12 @@ bool fits_one_group(const Polygon& a, const Polygon& b) {
     return s;
 }
 
-[[gnu::target("avx2"), gnu::always_inline]] inline PolygonContact polygon_polygon8(const Polygon& pa, const Polygon& pb) {
+[[gnu::target("avx2"), gnu::always_inline]] inline PolygonContact polygon_polygon8(const Polygon& pa,
+                                                                                  const Polygon& pb) {
     const Convex a = convex(pa), b = convex(pb);
     const Int8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
-    const Float8 minus_inf = {-INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    const float inf = INFINITY;
+    const Float8 minus_inf = {-inf, -inf, -inf, -inf, -inf, -inf, -inf, -inf};
     Float8 nx, ny, px, py;
     detail::load_xy8(a.normals, nx, ny);
     detail::load_xy8(a.points, px, py);
@@ -388,12 +391,18 @@ bool fits_one_group(const Polygon& a, const Polygon& b) {
     const bool a_face = ma[0] >= mb[0];
     const float depth = -(a_face ? ma[0] : mb[0]);
     if (!(depth < INFINITY)) return {};
-    const int face = std::countr_zero(a_face ? detail::lane_bits8(live_a & (sa == ma)) : detail::lane_bits8(live_b & (sb == mb)));
+    const unsigned tied =
+        a_face ? detail::lane_bits8(live_a & (sa == ma)) : detail::lane_bits8(live_b & (sb == mb));
+    const int face = std::countr_zero(tied);
     return {detail::hit_with(depth, a_face ? a.normals[face] : -b.normals[face]), a_face, face};
 }
 
-[[gnu::target("avx2")]] Manifold polygon_mtd8(const Polygon& a, const Polygon& b) { return polygon_polygon8(a, b).manifold; }
-[[gnu::target("avx2")]] PolygonContact polygon_contact8(const Polygon& a, const Polygon& b) { return polygon_polygon8(a, b); }
+[[gnu::target("avx2")]] Manifold polygon_mtd8(const Polygon& a, const Polygon& b) {
+    return polygon_polygon8(a, b).manifold;
+}
+[[gnu::target("avx2")]] PolygonContact polygon_contact8(const Polygon& a, const Polygon& b) {
+    return polygon_polygon8(a, b);
+}
 #endif
 
 // The MTD of two Polygons and its face.
@@ -465,6 +474,7 @@ ContactSet clip_contacts(const PolygonContact& pc, Convex ref, Convex inc, Vec2 
     ContactSet out = clip_edge(pc.manifold, n, v1, v2, inc.points[k] + offset - v1,
                                inc.points[detail::next_index(k, ni)] + offset - v1);
     if (out.count == 0) {
+        // None left (see clip_edge): the incident vertex deepest along n stands for the contact.
         int deepest = 0;
         for (int i = 1; i < ni; ++i)
             if (dot(n, inc.points[i] - inc.points[deepest]) < 0.0f) deepest = i;
@@ -537,7 +547,6 @@ ContactSet contacts(const Obb& a, const Obb& b) {
         int deepest = 0;
         for (int i = 1; i < 4; ++i)
             if (dot(n, inc.corner(i) - inc.corner(deepest)) < 0.0f) deepest = i;
-        out.manifold = bb.manifold;
         out.points[0] = inc.corner(deepest) + offset;
         out.depths[0] = bb.manifold.depth;
         out.count = 1;
