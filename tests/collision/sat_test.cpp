@@ -264,13 +264,36 @@ TEST(SatPolygon, EveryVertexCountMatchesTheFaceLoop) {
     EXPECT_GT(misses, 200);
 }
 
+// collide and contacts of a pair with the AVX2 paths on, then off: the same bits (every
+// slot of the contact set too). Leaves the AVX2 paths on; returns whether it is a hit.
+bool expect_same_answers_on_both_paths(const Polygon& a, const Polygon& b) {
+    const auto bits = [](float v) { return std::bit_cast<std::uint32_t>(v); };
+    EXPECT_TRUE(detail::use_avx2_paths(true));
+    const Manifold on = collide(a, b);
+    const ContactSet on_set = contacts(a, b);
+    detail::use_avx2_paths(false);
+    const Manifold off = collide(a, b);
+    const ContactSet off_set = contacts(a, b);
+    detail::use_avx2_paths(true);
+    EXPECT_EQ(on.hit, off.hit);
+    EXPECT_EQ(bits(on.depth), bits(off.depth));
+    EXPECT_EQ(bits(on.normal.x), bits(off.normal.x));
+    EXPECT_EQ(bits(on.normal.y), bits(off.normal.y));
+    EXPECT_EQ(on_set.count, off_set.count);
+    for (std::size_t k = 0; k < 2; ++k) {
+        EXPECT_EQ(bits(on_set.points[k].x), bits(off_set.points[k].x));
+        EXPECT_EQ(bits(on_set.points[k].y), bits(off_set.points[k].y));
+        EXPECT_EQ(bits(on_set.depths[k]), bits(off_set.depths[k]));
+    }
+    return on.hit;
+}
+
 // The polygon MTD runs faces eight at a time with AVX2 where the CPU has it, four at a time
 // with SSE elsewhere: the same answers bit for bit, or a replay would differ between
 // machines. Random polygons of 3..8 vertices, half of them on an integer grid (exact ties
 // between faces, identical and touching polygons), each pair with the AVX2 path on and off.
 TEST(SatPolygon, Avx2AndSsePathsGiveTheSameAnswers) {
     if (!detail::use_avx2_paths(true)) GTEST_SKIP() << "this CPU has no AVX2: the SSE path is the only one";
-    const auto bits = [](float v) { return std::bit_cast<std::uint32_t>(v); };
     Rng rng(0xa5c2u);
     int hits = 0;
     for (int n = 0; n < 20000; ++n) {
@@ -287,28 +310,43 @@ TEST(SatPolygon, Avx2AndSsePathsGiveTheSameAnswers) {
             a = *sa;
             b = *sb;
         }
-        ASSERT_TRUE(detail::use_avx2_paths(true));
-        const ContactSet on = contacts(a, b);
-        const Manifold on_mtd = collide(a, b);
-        detail::use_avx2_paths(false);
-        const ContactSet off = contacts(a, b);
-        const Manifold off_mtd = collide(a, b);
         SCOPED_TRACE(testing::Message() << "pair " << n);
-        EXPECT_EQ(on_mtd.hit, off_mtd.hit);
-        EXPECT_EQ(bits(on_mtd.depth), bits(off_mtd.depth));
-        EXPECT_EQ(bits(on_mtd.normal.x), bits(off_mtd.normal.x));
-        EXPECT_EQ(bits(on_mtd.normal.y), bits(off_mtd.normal.y));
-        EXPECT_EQ(on.count, off.count);
-        for (int k = 0; k < 2; ++k) {
-            EXPECT_EQ(bits(on.points[static_cast<std::size_t>(k)].x), bits(off.points[static_cast<std::size_t>(k)].x));
-            EXPECT_EQ(bits(on.points[static_cast<std::size_t>(k)].y), bits(off.points[static_cast<std::size_t>(k)].y));
-            EXPECT_EQ(bits(on.depths[static_cast<std::size_t>(k)]), bits(off.depths[static_cast<std::size_t>(k)]));
-        }
-        hits += on_mtd.hit;
+        hits += expect_same_answers_on_both_paths(a, b);
         if (HasFailure()) break;
     }
-    detail::use_avx2_paths(true);
     EXPECT_GT(hits, 2000);
+}
+
+// The same past the limits: polygons scaled and moved until separations overflow to +-inf
+// or NaN (a miss, or a depth that is not finite), where the 8-face path takes its face from
+// a lane mask rather than a loop. (make_polygon refuses edges whose cross products
+// overflow, so the sizes stay below about 1e19, and moved() takes them far away.)
+TEST(SatPolygon, Avx2AndSsePathsAgreePastTheLimits) {
+    if (!detail::use_avx2_paths(true)) GTEST_SKIP() << "this CPU has no AVX2: the SSE path is the only one";
+    const float scales[] = {1.0f, 1e6f, 1e17f, 1e18f};
+    const float shifts[] = {0.0f, 1e30f, 1.7e38f, 2e38f, -2e38f};
+    Rng rng(0x51c3u);
+    int compared = 0;
+    for (int n = 0; n < 4000; ++n) {
+        const float scale = scales[rng.below(4)], shift_a = shifts[rng.below(5)], shift_b = shifts[rng.below(5)];
+        const auto big = [&](const Polygon& p, float shift) -> std::optional<Polygon> {
+            std::vector<Vec2> pts;
+            for (const Vec2 v : p.points()) pts.push_back(v * scale);
+            const auto scaled = make_polygon(pts);
+            if (!scaled) return std::nullopt;
+            const Polygon moved = scaled->moved({shift, -shift});  // may round vertices together
+            if (moved.count() == 0) return std::nullopt;
+            return moved;
+        };
+        const Polygon pa = test::random_polygon(rng, 10.0f), pb = n % 7 == 0 ? pa : test::random_polygon(rng, 10.0f);
+        const auto a = big(pa, shift_a), b = big(pb, shift_b);
+        if (!a || !b) continue;
+        SCOPED_TRACE(testing::Message() << "pair " << n);
+        expect_same_answers_on_both_paths(*a, *b);
+        ++compared;
+        if (HasFailure()) break;
+    }
+    EXPECT_GT(compared, 1000);
 }
 
 TEST(SatPolygonSegment, SegmentCrossingASquare) {

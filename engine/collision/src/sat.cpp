@@ -128,8 +128,11 @@ inline BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
     // The first axis whose push is the least (a later one wins only when strictly smaller).
     out.axis = std::countr_zero(detail::lane_bits(push == best));
     out.positive = pos[out.axis] != 0;
-    const Vec2 u{ux[out.axis], uy[out.axis]};
-    out.manifold = detail::hit_with(best, out.positive ? u : -u);
+    // Every axis's normal, +u or -u (a sign flip), then the MTD's: no branch on the sign.
+    const Float4 minus_zero = {-0.0f, -0.0f, -0.0f, -0.0f};
+    const Float4 signs = pos ? Float4{} : minus_zero;
+    const Float4 nx = detail::bit_xor(ux, signs), ny = detail::bit_xor(uy, signs);
+    out.manifold = detail::hit_with(best, {nx[out.axis], ny[out.axis]});
     return out;
 }
 }  // namespace
@@ -278,21 +281,38 @@ struct Convex {
 };
 Convex convex(const Polygon& p) { return {p.points().data(), p.normals().data(), p.count()}; }
 
-// An OBB's corners and normals around its centre (positive turns, like to_polygon).
+// An OBB around its centre: its rotation and half axes ux = rotate(q, {hx, 0}), uy =
+// rotate(q, {0, hy}). Corner i is -ux - uy, ux - uy, ux + uy, -ux + uy (positive turns, like
+// to_polygon), formed as (+-ux) + (+-uy) with the signs flipped bit-wise (a - b is a + -b, so
+// the same bits); normal i is rotate(q, {0, -1}), ({1, 0}), ({0, 1}), ({-1, 0}).
+struct BoxAxes {
+    Rot q;
+    Vec2 ux, uy;
+    explicit BoxAxes(const Obb& box)
+        : q(box.rotation()), ux(rotate(q, Vec2{box.half.x, 0.0f})), uy(rotate(q, Vec2{0.0f, box.half.y})) {}
+    Vec2 corner(int i) const {
+        static constexpr bool kNegX[4] = {true, false, false, true}, kNegY[4] = {true, true, false, false};
+        const Vec2 x = kNegX[i] ? -ux : ux, y = kNegY[i] ? -uy : uy;
+        return x + y;
+    }
+    Vec2 normal(int i) const {
+        static constexpr Vec2 kNormals[4] = {{0.0f, -1.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, {-1.0f, 0.0f}};
+        return rotate(q, kNormals[i]);
+    }
+};
+
+// An OBB's corners and normals around its centre, as arrays (a polygon's view).
 struct CentredBox {
-    std::array<Vec2, 4> points;
+    Vec2 points[4];
     Vec2 normals[4];
     explicit CentredBox(const Obb& box) {
-        const Rot q = box.rotation();
-        const Vec2 ux = rotate(q, Vec2{box.half.x, 0.0f});
-        const Vec2 uy = rotate(q, Vec2{0.0f, box.half.y});
-        points = {-ux - uy, ux - uy, ux + uy, -ux + uy};
-        normals[0] = rotate(q, Vec2{0.0f, -1.0f});
-        normals[1] = rotate(q, Vec2{1.0f, 0.0f});
-        normals[2] = rotate(q, Vec2{0.0f, 1.0f});
-        normals[3] = rotate(q, Vec2{-1.0f, 0.0f});
+        const BoxAxes axes(box);
+        for (int i = 0; i < 4; ++i) {
+            points[i] = axes.corner(i);
+            normals[i] = axes.normal(i);
+        }
     }
-    Convex view() const { return {points.data(), normals, 4}; }
+    Convex view() const { return {points, normals, 4}; }
 };
 
 // The MTD of two polygons and the face it came from (the reference face of a contact set).
@@ -302,7 +322,7 @@ struct PolygonContact {
     int face = 0;
 };
 
-PolygonContact polygon_polygon(Convex a, Convex b, Vec2 offset) {
+[[gnu::noinline]] PolygonContact polygon_polygon(Convex a, Convex b, Vec2 offset) {
     const int na = a.count, nb = b.count;
     // B's points shifted; with no shift, B's own (adding a zero could only turn a -0 into +0,
     // which no separation can tell apart).
@@ -324,6 +344,75 @@ PolygonContact polygon_polygon(Convex a, Convex b, Vec2 offset) {
             a_face ? fa.face : fb.face};
 }
 
+#ifdef JOSTLE_AVX2_PATHS
+// polygon_polygon for two Polygons of at most 8 vertices, more than 4 on one (AVX2): each
+// one's faces are one group, A's and then B's, in one function (one frame, one VZEROUPPER,
+// no call per side). The same separations and answers as polygon_polygon: A's gap returns
+// before B's faces are tried, a gap's value is never used, and a group's largest separation
+// is a lane's value (VMAXPS returns one of its operands; the first lane equal to it may hold
+// -0 for +0, which neither the comparison of the sides nor the clamped depth tells apart).
+bool fits_one_group(const Polygon& a, const Polygon& b) {
+    return a.count() <= 8 && b.count() <= 8 && (a.count() > 4 || b.count() > 4) && detail::has_avx2();
+}
+
+// The smallest separation of the points from each of the 8 faces (n, p): the loop of
+// max_face_separation_avx.
+[[gnu::target("avx2"), gnu::always_inline]] inline Float8 min_separations8(Float8 nx, Float8 ny, Float8 px,
+                                                                          Float8 py, const Vec2* others,
+                                                                          int other_count) {
+    Float8 s = nx * (others[0].x - px) + ny * (others[0].y - py);
+    for (int j = 1; j < other_count; ++j) {
+        const Float8 d = nx * (others[j].x - px) + ny * (others[j].y - py);
+        s = d < s ? d : s;
+    }
+    return s;
+}
+
+[[gnu::target("avx2"), gnu::always_inline]] inline PolygonContact polygon_polygon8(const Polygon& pa,
+                                                                                  const Polygon& pb) {
+    const Convex a = convex(pa), b = convex(pb);
+    const Int8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    const float inf = INFINITY;
+    const Float8 minus_inf = {-inf, -inf, -inf, -inf, -inf, -inf, -inf, -inf};
+    Float8 nx, ny, px, py;
+    detail::load_xy8(a.normals, nx, ny);
+    detail::load_xy8(a.points, px, py);
+    const Float8 sa = min_separations8(nx, ny, px, py, b.points, b.count);
+    const Int8 live_a = lane < a.count;
+    if (detail::lane_bits8(live_a & ~(sa <= 0.0f)) != 0) return {};  // > 0, or NaN past the limits
+    detail::load_xy8(b.normals, nx, ny);
+    detail::load_xy8(b.points, px, py);
+    const Float8 sb = min_separations8(nx, ny, px, py, a.points, a.count);
+    const Int8 live_b = lane < b.count;
+    if (detail::lane_bits8(live_b & ~(sb <= 0.0f)) != 0) return {};
+    const Float8 ma = detail::max8(live_a ? sa : minus_inf);
+    const Float8 mb = detail::max8(live_b ? sb : minus_inf);
+    // Ties go to A's face; of tied faces the first.
+    const bool a_face = ma[0] >= mb[0];
+    const float depth = -(a_face ? ma[0] : mb[0]);
+    if (!(depth < INFINITY)) return {};
+    const unsigned tied =
+        a_face ? detail::lane_bits8(live_a & (sa == ma)) : detail::lane_bits8(live_b & (sb == mb));
+    const int face = std::countr_zero(tied);
+    return {detail::hit_with(depth, a_face ? a.normals[face] : -b.normals[face]), a_face, face};
+}
+
+[[gnu::target("avx2")]] Manifold polygon_mtd8(const Polygon& a, const Polygon& b) {
+    return polygon_polygon8(a, b).manifold;
+}
+[[gnu::target("avx2")]] PolygonContact polygon_contact8(const Polygon& a, const Polygon& b) {
+    return polygon_polygon8(a, b);
+}
+#endif
+
+// The MTD of two Polygons and its face.
+PolygonContact polygon_contact(const Polygon& a, const Polygon& b) {
+#ifdef JOSTLE_AVX2_PATHS
+    if (fits_one_group(a, b)) return polygon_contact8(a, b);
+#endif
+    return polygon_polygon(convex(a), convex(b), {});
+}
+
 // Sutherland-Hodgman against one line: keeps the part of the segment where dot(u, p) <= c;
 // false when none is left.
 bool clip(Vec2 (&ends)[2], Vec2 u, float c) {
@@ -338,11 +427,40 @@ bool clip(Vec2 (&ends)[2], Vec2 u, float c) {
 // reference face is the MTD's face; the incident face is the other polygon's face most
 // opposed to it; the incident edge is clipped to the reference edge's extent, and the
 // clipped ends that lie on or below the reference face are the contacts, each with its own
-// depth below that face. `ref` and `inc` are the polygons with `inc` shifted by `offset`.
-ContactSet clip_contacts(const PolygonContact& pc, Convex ref, Convex inc, Vec2 offset) {
+// depth below that face.
+//
+// The clipping, given the reference face (normal n, from v1 to v2) and the incident edge's
+// ends relative to v1: the contacts in the reference polygon's frame, or none when rounding
+// left no clipped end on or below the face (or the incident edge lies beside the reference
+// edge); then the caller takes the incident vertex deepest along n.
+[[gnu::always_inline]] inline ContactSet clip_edge(const Manifold& m, Vec2 n, Vec2 v1, Vec2 v2, Vec2 e0,
+                                                  Vec2 e1) {
     ContactSet out;
-    out.manifold = pc.manifold;
-    if (!pc.manifold.hit) return out;
+    out.manifold = m;
+    // The side planes s >= 0 and s <= |v2 - v1| along the edge's direction t.
+    const Vec2 t{-n.y, n.x};  // the edge direction of a positively turning polygon
+    Vec2 ends[2] = {e0, e1};
+    if (clip(ends, -t, 0.0f) && clip(ends, t, dot(t, v2 - v1))) {
+        for (const Vec2 p : ends) {
+            const float h = dot(n, p);  // height above the reference face
+            if (h <= 0.0f) {
+                out.points[static_cast<std::size_t>(out.count)] = p + v1;
+                out.depths[static_cast<std::size_t>(out.count)] = detail::clamp(-h, 0.0f, m.depth);
+                ++out.count;
+            }
+        }
+    }
+    if (out.count == 2 && out.points[0] == out.points[1]) out.count = 1;
+    return out;
+}
+
+// The contact set of polygons `ref` and `inc`, `inc` shifted by `offset`.
+ContactSet clip_contacts(const PolygonContact& pc, Convex ref, Convex inc, Vec2 offset) {
+    if (!pc.manifold.hit) {
+        ContactSet out;
+        out.manifold = pc.manifold;
+        return out;
+    }
     const int nr = ref.count, ni = inc.count;
     const Vec2 n = ref.normals[pc.face];
     const Vec2 v1 = ref.points[pc.face];
@@ -353,24 +471,10 @@ ContactSet clip_contacts(const PolygonContact& pc, Convex ref, Convex inc, Vec2 
         const float d = dot(inc.normals[i], n);
         if (d < most) { most = d; k = i; }
     }
-    // The incident edge relative to v1, clipped to the reference edge's extent along its
-    // direction t (the side planes s >= 0 and s <= |v2 - v1|).
-    const Vec2 t{-n.y, n.x};  // the edge direction of a positively turning polygon
-    Vec2 ends[2] = {inc.points[k] + offset - v1, inc.points[detail::next_index(k, ni)] + offset - v1};
-    if (clip(ends, -t, 0.0f) && clip(ends, t, dot(t, v2 - v1))) {
-        for (const Vec2 p : ends) {
-            const float h = dot(n, p);  // height above the reference face
-            if (h <= 0.0f) {
-                out.points[static_cast<std::size_t>(out.count)] = p + v1;
-                out.depths[static_cast<std::size_t>(out.count)] = detail::clamp(-h, 0.0f, pc.manifold.depth);
-                ++out.count;
-            }
-        }
-    }
-    if (out.count == 2 && out.points[0] == out.points[1]) out.count = 1;
+    ContactSet out = clip_edge(pc.manifold, n, v1, v2, inc.points[k] + offset - v1,
+                               inc.points[detail::next_index(k, ni)] + offset - v1);
     if (out.count == 0) {
-        // Rounding left no clipped end on or below the face (or the incident edge beside the
-        // reference edge): the incident vertex deepest along n stands for the contact.
+        // None left (see clip_edge): the incident vertex deepest along n stands for the contact.
         int deepest = 0;
         for (int i = 1; i < ni; ++i)
             if (dot(n, inc.points[i] - inc.points[deepest]) < 0.0f) deepest = i;
@@ -404,24 +508,56 @@ ContactSet finite_or_miss(const ContactSet& c) {
 
 ContactSet contacts(const Polygon& a, const Polygon& b) {
     if (!valid(a) || !valid(b)) return {};
-    return finite_or_miss(contacts_of(polygon_polygon(convex(a), convex(b), {}), convex(a), convex(b), {}));
+    return finite_or_miss(contacts_of(polygon_contact(a, b), convex(a), convex(b), {}));
 }
 
 ContactSet contacts(const Obb& a, const Obb& b) {
-    // The MTD of collide(a, b), then its face on the box that owns the axis: CentredBox's
-    // faces 0..3 have normals -y, +x, +y, -x of the box. Solved around A's centre, where both
-    // boxes' corners are precise; the points are moved back.
+    // The MTD of collide(a, b), then its face on the box that owns the axis: faces 0..3 have
+    // normals -y, +x, +y, -x of the box. Solved around A's centre, where both boxes' corners
+    // are precise; the points are moved back. The same arithmetic as clip_contacts on the two
+    // CentredBoxes (so the same bits), with only the corners and normals it reads computed,
+    // and the incident face (the four normals' dot products with n) found side by side.
     const Vec2 d = b.center - a.center;
     const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), d);
     if (!bb.manifold.hit || !(valid(a) && valid(b))) return {};
     // A's face has the normal's direction; B's the opposite one.
     const bool a_face = bb.axis < 2;
-    const bool outward_positive = a_face ? bb.positive : !bb.positive;
-    const int face = (bb.axis % 2 == 0) ? (outward_positive ? 1 : 3) : (outward_positive ? 2 : 0);
-    const CentredBox box_a(a), box_b(b);
-    ContactSet c = contacts_of(PolygonContact{bb.manifold, a_face, face}, box_a.view(), box_b.view(), d);
-    for (int k = 0; k < c.count; ++k) c.points[static_cast<std::size_t>(k)] += a.center;
-    return finite_or_miss(c);
+    const bool outward_positive = bb.positive == a_face;
+    static constexpr int kFace[2][2] = {{3, 1}, {0, 2}};  // [y axis][outward along +axis]
+    const int face = kFace[bb.axis & 1][outward_positive];
+    const BoxAxes ref(a_face ? a : b), inc(a_face ? b : a);
+    const Vec2 offset = a_face ? d : -d;  // inc's centre relative to ref's
+    const Vec2 n = ref.normal(face);
+    const Vec2 v1 = ref.corner(face), v2 = ref.corner(detail::next_index(face, 4));
+    // dot(inc.normal(i), n) for the four faces (rotate's arithmetic lane by lane); of tied
+    // faces the first, as clip_contacts' loop takes.
+    const Float4 c = {inc.q.c, inc.q.c, inc.q.c, inc.q.c}, s = {inc.q.s, inc.q.s, inc.q.s, inc.q.s};
+    const Float4 vx = {0.0f, 1.0f, 0.0f, -1.0f}, vy = {-1.0f, 0.0f, 1.0f, 0.0f};
+    const Float4 dots = (c * vx - s * vy) * n.x + (s * vx + c * vy) * n.y;
+    Float4 least = __builtin_shufflevector(dots, dots, 1, 0, 3, 2);
+    least = dots < least ? dots : least;
+    const Float4 other_pair = __builtin_shufflevector(least, least, 2, 3, 0, 1);
+    least = least < other_pair ? least : other_pair;
+    const unsigned first = detail::lane_bits(dots == least);  // not 0: valid boxes give no NaN
+    const int k = first != 0 ? std::countr_zero(first) : 0;
+    ContactSet out = clip_edge(bb.manifold, n, v1, v2, inc.corner(k) + offset - v1,
+                               inc.corner(detail::next_index(k, 4)) + offset - v1);
+    if (out.count == 0) {
+        // Rounding left no clipped end on or below the face: the deepest incident corner.
+        int deepest = 0;
+        for (int i = 1; i < 4; ++i)
+            if (dot(n, inc.corner(i) - inc.corner(deepest)) < 0.0f) deepest = i;
+        out.points[0] = inc.corner(deepest) + offset;
+        out.depths[0] = bb.manifold.depth;
+        out.count = 1;
+    }
+    // Back to A's frame (with B's face, both slots, as contacts_of moves them), then to the
+    // world.
+    if (!a_face) {
+        for (Vec2& p : out.points) p = p + d;
+    }
+    for (int i = 0; i < out.count; ++i) out.points[static_cast<std::size_t>(i)] += a.center;
+    return finite_or_miss(out);
 }
 
 Manifold collide(const Obb& a, const Obb& b) {
@@ -444,6 +580,9 @@ Manifold collide(const Aabb& a, const Obb& b) {
 Manifold collide(const Polygon& a, const Polygon& b) {
     // 09-62: any convex shape, every edge normal of both.
     if (!valid(a) || !valid(b)) return {};
+#ifdef JOSTLE_AVX2_PATHS
+    if (fits_one_group(a, b)) return polygon_mtd8(a, b);
+#endif
     return polygon_polygon(convex(a), convex(b), {}).manifold;
 }
 
