@@ -14,22 +14,45 @@ namespace jostle {
 using detail::hit_with;
 using detail::valid;
 
-Manifold collide(const Circle& a, const Circle& b) {
-    // 09-71: compare squared distances, so no square root for a miss. Only the radii are
-    // checked up front (as valid(Circle) does: r >= 0 and r^2 finite, so r1 + r2 is finite
-    // and so is the depth): a NaN or infinite centre makes dist2 NaN or infinite, which the
-    // comparison below turns into a miss (an infinite dist2 explicitly).
-    if (!(a.radius >= 0.0f && a.radius * a.radius < INFINITY && b.radius >= 0.0f && b.radius * b.radius < INFINITY)) {
+namespace {
+// collide(Circle, Circle) past its distance test, kept out of line (a tail call) so that the
+// miss, the common answer, is a short function whose {} needs no packing of a hit's fields.
+[[gnu::noinline]] Manifold circle_circle_near(const Circle& a, const Circle& b, float dx, float dy, float dist2, float r) {
+    // The radii as valid(Circle) checks them (r >= 0 and r^2 finite, so r1 + r2 is finite and
+    // so is the depth), in one test; an infinite dist2 (r^2 may overflow) is a miss too.
+    if (!((a.radius >= 0.0f) & (a.radius * a.radius < INFINITY) & (b.radius >= 0.0f) & (b.radius * b.radius < INFINITY) &
+          (dist2 != INFINITY)))
         return {};
-    }
+    // 09-72: mtd = (c1 - c2)/|c1 - c2| (r1 + r2 - |c1 - c2|) = -depth * normal. Coincident
+    // centres have no direction; {1, 0} is the defined one (as in Box2D). One square root for
+    // the depth and the normal, in every lane (SQRTPS: each lane std::sqrt's value), so that
+    // one DIVPS divides both components (each lane the scalar division's quotient).
+    using detail::Float4;
+    const Float4 len = detail::sqrt_nonneg(Float4{dist2, dist2, dist2, dist2});
+    Float4 n = {1.0f, 0.0f, 1.0f, 0.0f};
+    if (len[0] > 0.0f) n = detail::plain_zeros(Float4{dx, dy, dx, dy} / len);
+    // hit_with without its finiteness test, which cannot fail here: r is finite (valid
+    // radii), so are dist2 (tested), d (d.x^2 <= dist2) and len, and |d.x| / len is at most
+    // about 1 (dist2 >= fl(d.x^2); a dist2 rounded to 0 takes the {1, 0} branch).
+    const float depth = r - len[0];
+    Manifold m;
+    m.hit = true;
+    m.depth = depth > 0.0f ? depth : 0.0f;
+    std::memcpy(static_cast<void*>(&m.normal), &n, sizeof m.normal);  // lanes 0 and 1, kept in a register
+    return m;
+}
+}  // namespace
+
+Manifold collide(const Circle& a, const Circle& b) {
+    // 09-71: compare squared distances, so no square root for a miss. The radii are checked
+    // only for an answer that would be a hit (an invalid circle is a miss, and the arithmetic
+    // on any input is defined): a NaN or infinite centre makes dist2 NaN or infinite, which
+    // the comparison here or the test of dist2 there turns into a miss.
     const Vec2 d = b.center - a.center;
     const float dist2 = dot(d, d);
     const float r = a.radius + b.radius;
-    if (!(dist2 <= r * r) || dist2 == INFINITY) return {};
-    // 09-72: mtd = (c1 - c2)/|c1 - c2| (r1 + r2 - |c1 - c2|) = -depth * normal. Coincident
-    // centres have no direction; {1, 0} is the defined one (as in Box2D).
-    const float len = detail::sqrt_nonneg(dist2);  // one square root for the depth and the normal
-    return hit_with(r - len, len > 0.0f ? Vec2{d.x / len, d.y / len} : Vec2{1.0f, 0.0f});
+    if (!(dist2 <= r * r)) return {};
+    return circle_circle_near(a, b, d.x, d.y, dist2, r);
 }
 
 namespace {
