@@ -56,80 +56,153 @@ Manifold collide(const Circle& a, const Circle& b) {
 }
 
 namespace {
-// dot(n_i, c - p_i) for faces 2k and 2k + 1 in lanes 0 and 2 (a Polygon stores its points and
-// normals x, y, x, y, so lane 0 + lane 1 and lane 2 + lane 3 are the two faces' dot products,
-// summed in the scalar order, x term + y term: each value is the scalar loop's bit for bit).
-// An odd count's missing face (slot n, which every Polygon has) is -inf.
-inline detail::Float4 face_pair_separation(const Polygon& poly, detail::Float4 cc, int k) {
-    detail::Float4 p, u;
-    std::memcpy(&p, poly.points().data() + 2 * k, sizeof p);
-    std::memcpy(&u, poly.normals().data() + 2 * k, sizeof u);
-    const detail::Float4 m = u * (cc - p);
-    detail::Float4 s = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
-    if (2 * k + 1 == poly.count()) s[2] = -INFINITY;
-    return s;
+using detail::Float4;
+using detail::Int4;
+
+// The slots of a 4-slot group past the first `live` (0..4): all bits set, which OR-ed into a
+// float makes it NaN, a value no comparison picks.
+constexpr Int4 kDeadSlots[5] = {{-1, -1, -1, -1}, {0, -1, -1, -1}, {0, 0, -1, -1}, {0, 0, 0, -1}, {0, 0, 0, 0}};
+inline Float4 dead_to_nan(Float4 v, int live) {
+    return reinterpret_cast<Float4>(reinterpret_cast<Int4>(v) | kDeadSlots[live]);
 }
 
-// How far the point is outside the polygon's farthest face (09-90's first step): the max over
-// the faces of dot(n_i, c - p_i), lane by lane (MAXPS: a NaN never wins, as in a loop's
-// `s > max`); -inf when every face gives NaN (past the limits).
-inline float max_face_separation(const Polygon& poly, detail::Float4 cc) {
-    detail::Float4 top = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    for (int k = 0; k < (poly.count() + 1) / 2; ++k) {
-        const detail::Float4 s = face_pair_separation(poly, cc, k);
-        top = s > top ? s : top;
-    }
-    return top[2] > top[0] ? top[2] : top[0];
+// Slots 4k..4k+3 of a Polygon's arrays (x, y, x, y: two 16-byte loads each; every Polygon has
+// 16 slots, so the loads stay inside it), each slot's x and y terms summed in the scalar
+// order, x term + y term: lane j is then the scalar value for slot 4k + j bit for bit.
+// `terms` gives each slot's two terms from the points (and normals) of two slots; the caller
+// turns the slots past the last vertex into NaN.
+template <class Terms>
+inline Float4 slot_quad(const Polygon& poly, int k, Terms&& terms) {
+    Float4 p0, p1, u0, u1;
+    std::memcpy(&p0, poly.points().data() + 4 * k, sizeof p0);
+    std::memcpy(&p1, poly.points().data() + 4 * k + 2, sizeof p1);
+    std::memcpy(&u0, poly.normals().data() + 4 * k, sizeof u0);
+    std::memcpy(&u1, poly.normals().data() + 4 * k + 2, sizeof u1);
+    const Float4 m0 = terms(p0, u0), m1 = terms(p1, u1);
+    return __builtin_shufflevector(m0, m1, 0, 2, 4, 6) + __builtin_shufflevector(m0, m1, 1, 3, 5, 7);
 }
 
-// The first face whose separation is `most` (found from bit masks, with no branch on the
-// data): the face a loop keeping the first strict maximum would name. Only the sign of a zero
-// separation may differ from that loop's, which no use of it can tell.
-inline int first_face_at(const Polygon& poly, detail::Float4 cc, float most) {
-    unsigned faces = 0;
-    for (int k = 0; k < (poly.count() + 1) / 2; ++k) {
-        const unsigned bits = detail::lane_bits(face_pair_separation(poly, cc, k) == most);
-        faces |= ((bits & 1u) | ((bits >> 1) & 2u)) << (2 * k);
+// dot(n_i, c - p_i) for faces 4k..4k+3.
+inline Float4 face_separations(const Polygon& poly, Float4 cc, int k) {
+    return slot_quad(poly, k, [cc](Float4 p, Float4 u) { return u * (cc - p); });
+}
+
+// |c - p_i|^2 as dot(o, o), o = c - p_i, for vertices 4k..4k+3.
+inline Float4 vertex_distances(const Polygon& poly, Float4 cc, int k) {
+    return slot_quad(poly, k, [cc](Float4 p, Float4) {
+        const Float4 o = cc - p;
+        return o * o;
+    });
+}
+
+// Each lane's larger value, `s > top ? s : top` as a loop keeps it (a NaN s never wins): MAXPS,
+// written out because GCC compiles the expression with a constant `top` into a compare and
+// a blend.
+inline Float4 lane_max(Float4 s, Float4 top) {
+#if defined(__SSE__)
+    return reinterpret_cast<Float4>(_mm_max_ps(reinterpret_cast<__m128>(s), reinterpret_cast<__m128>(top)));
+#else
+    return s > top ? s : top;
+#endif
+}
+
+// Each lane's largest of the four groups' (-inf for a lane of NaNs).
+inline Float4 lanes_max(Float4 s0, Float4 s1, Float4 s2, Float4 s3) {
+    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    return lane_max(s3, lane_max(s2, lane_max(s1, lane_max(s0, none))));
+}
+
+// The separations of a polygon's faces, four to a register (up to 16 faces: NaN in the slots
+// past the last face; the groups past the last are copies of s0, which change neither the
+// maximum nor the first face at it), and each lane's largest (-inf for a lane of NaNs).
+struct FaceSeparations {
+    Float4 s0, s1, s2, s3, top;
+};
+inline FaceSeparations face_separations(const Polygon& poly, Float4 cc) {
+    FaceSeparations f;
+    const int n = poly.count();
+    f.s0 = face_separations(poly, cc, 0);
+    if (n <= 4) {
+        f.s0 = dead_to_nan(f.s0, n);
+        f.s1 = f.s2 = f.s3 = f.s0;
+    } else {
+        f.s1 = face_separations(poly, cc, 1);
+        if (n <= 8) {
+            f.s1 = dead_to_nan(f.s1, n - 4);
+            f.s2 = f.s3 = f.s0;
+        } else {
+            f.s2 = face_separations(poly, cc, 2);
+            if (n <= 12) {
+                f.s2 = dead_to_nan(f.s2, n - 8);
+                f.s3 = f.s0;
+            } else {
+                f.s3 = dead_to_nan(face_separations(poly, cc, 3), n - 12);
+            }
+        }
     }
-    return faces == 0 ? 0 : std::countr_zero(faces);  // none: every face NaN
+    f.top = lanes_max(f.s0, f.s1, f.s2, f.s3);
+    return f;
+}
+
+// How far the point is outside the farthest face (09-90's first step): the largest of the
+// lanes' maxima. Only the sign of a zero maximum may depend on the order of the search, which
+// no use of it can tell (r - max_sep is +-0 either way, and a zero depth is returned as +0).
+inline float largest(Float4 top) {
+    top = lane_max(__builtin_shufflevector(top, top, 2, 3, 2, 3), top);
+    return top[1] > top[0] ? top[1] : top[0];
+}
+
+// The first face whose separation is `most` (from lane masks, with no branch on the data): the
+// face a loop keeping the first strict maximum would name, or 0 when every face is NaN.
+inline int first_face_at(Float4 s0, Float4 s1, Float4 s2, Float4 s3, float most) {
+    const Float4 m = {most, most, most, most};
+    const unsigned faces = detail::lane_bits(s0 == m) | detail::lane_bits(s1 == m) << 4 | detail::lane_bits(s2 == m) << 8 |
+                           detail::lane_bits(s3 == m) << 12;
+    return faces == 0 ? 0 : std::countr_zero(faces);
 }
 
 // The vertex nearest the point and its squared distance: the first i of least dot(o, o),
 // o = c - p_i (a loop keeping the first strict minimum), dist2 = +inf and vertex 0 when every
-// distance overflows. Two vertices a step (the face_pair_separation layout: lanes 0 and 2
-// are vertices 2k and 2k + 1, each the scalar o.x * o.x + o.y * o.y); each lane keeps its
-// own first minimum, so neither a branch per vertex nor a second pass is needed.
+// distance overflows. Four vertices a step, each lane keeping its own first minimum, so
+// neither a branch per vertex nor a second pass is needed.
 struct NearestVertex {
     float dist2 = INFINITY;
     int vertex = 0;
 };
-inline NearestVertex nearest_vertex(const Polygon& poly, detail::Float4 cc) {
-    using detail::Float4;
-    using detail::Int4;
+inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     Float4 best = {INFINITY, INFINITY, INFINITY, INFINITY};
     Int4 index = {0, 0, 0, 0};
-    for (int k = 0; k < (poly.count() + 1) / 2; ++k) {
-        Float4 p;
-        std::memcpy(&p, poly.points().data() + 2 * k, sizeof p);
-        const Float4 o = cc - p;
-        const Float4 m = o * o;
-        Float4 d2 = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
-        if (2 * k + 1 == poly.count()) d2[2] = INFINITY;  // no vertex in slot n
+    Int4 at = {0, 1, 2, 3};
+    for (int k = 0; k < (poly.count() + 3) / 4; ++k) {
+        const int live = poly.count() - 4 * k;
+        const Float4 d2 = dead_to_nan(vertex_distances(poly, cc, k), live < 4 ? live : 4);
         const Int4 closer = d2 < best;
         best = closer ? d2 : best;
-        index = closer ? Int4{2 * k, 2 * k, 2 * k + 1, 2 * k + 1} : index;
+        index = closer ? at : index;
+        at += 4;
     }
-    // Even vertices in lane 0, odd ones in lane 2: the smaller distance, or on a tie the
-    // smaller index.
-    const bool odd = best[2] < best[0] || (best[2] == best[0] && index[2] < index[0]);
-    return {odd ? best[2] : best[0], odd ? index[2] : index[0]};
+    // The lanes' minima, lanes 2 and 3 against 0 and 1, then lane 1 against lane 0: the
+    // smaller distance, or on a tie the smaller index (lane masks: which lane wins is data,
+    // too random for a branch).
+    const auto fold = [&](Float4 b_other, Int4 i_other) {
+        const Int4 take = (b_other < best) | ((b_other == best) & (i_other < index));
+        best = take ? b_other : best;
+        index = take ? i_other : index;
+    };
+    fold(__builtin_shufflevector(best, best, 2, 3, 2, 3), __builtin_shufflevector(index, index, 2, 3, 2, 3));
+    fold(__builtin_shufflevector(best, best, 1, 1, 1, 1), __builtin_shufflevector(index, index, 1, 1, 1, 1));
+    return {best[0], index[0]};
 }
 
 // collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
-// Kept out of line so that the common early out is a short function with nothing to save.
-[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, detail::Float4 cc, float max_sep) {
+// Kept out of line (a tail call, the separations in registers) so that the common early out
+// is a short function with nothing to save.
+[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, Float4 cc, Float4 s0, Float4 s1,
+                                               Float4 s2, Float4 s3) {
+    if (!valid(b)) return {};
     const Vec2 c = b.center;
-    const int max_edge = first_face_at(a, cc, max_sep);
+    const float max_sep = largest(lanes_max(s0, s1, s2, s3));
+    const int max_edge = first_face_at(s0, s1, s2, s3, max_sep);
     if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);  // centre inside
     // Beside the edge of greatest separation (c projects inside it, tested from each end so
     // that a long edge rounds neither), that edge is the nearest feature: its own normal and
@@ -164,10 +237,11 @@ Manifold collide(const Polygon& a, const Circle& b) {
     // The circle is checked only for an answer that would be a hit (an invalid circle is a
     // miss, and the arithmetic on any input is defined); the empty polygon has no faces.
     if (!valid(a)) return {};
-    const detail::Float4 cc = {b.center.x, b.center.y, b.center.x, b.center.y};
-    const float max_sep = max_face_separation(a, cc);
-    if (max_sep > b.radius || !valid(b)) return {};  // an edge normal separates: early out
-    return polygon_circle_near(a, b, cc, max_sep);
+    const Float4 cc = {b.center.x, b.center.y, b.center.x, b.center.y};
+    const FaceSeparations f = face_separations(a, cc);
+    // An edge normal separates (some lane's maximum beyond r, as the largest would be): early out.
+    if (detail::lane_bits(f.top > Float4{b.radius, b.radius, b.radius, b.radius}) != 0) return {};
+    return polygon_circle_near(a, b, cc, f.s0, f.s1, f.s2, f.s3);
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {
