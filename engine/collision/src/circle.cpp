@@ -293,10 +293,16 @@ inline Manifold box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
     const Vec2 q{clamp(c.x, lo.x, hi.x), clamp(c.y, lo.y, hi.y)};
     const Vec2 d = c - q;
     const float dist2 = dot(d, d);
+    // The miss first, the common answer's one branch; whether the centre is inside is then
+    // asked only of a hit. A NaN dist2 goes on to the inside test, as it always has; so does a
+    // NaN r * r, whose NaN depth hit_with turns into the miss that `!(dist2 <= r * r)` gave.
+    if (dist2 > r * r) return {};
     if (dist2 > 0.0f) {
-        if (!(dist2 <= r * r)) return {};
-        const float dist = detail::sqrt_nonneg(dist2);
-        return hit_with(r - dist, Vec2{d.x / dist, d.y / dist});
+        // One square root, one DIVPS for both components (each lane the scalar quotient).
+        using detail::Float4;
+        const Float4 dist = detail::sqrt_nonneg(Float4{dist2, dist2, dist2, dist2});
+        const Float4 n = Float4{d.x, d.y, d.x, d.y} / dist;
+        return hit_with(r - dist[0], Vec2{n[0], n[1]});
     }
     float depth = c.x - lo.x;
     Vec2 normal{-1.0f, 0.0f};
