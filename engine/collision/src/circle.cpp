@@ -278,44 +278,56 @@ Manifold collide_sat(const Polygon& a, const Circle& b) {
 }
 
 namespace {
-// The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in"). Here, not
-// behind a call, so that the box and circle pairs compile into one function each.
-inline Manifold box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
+using detail::Float4;
+
+// A pair of floats (Vec2, Rot) in lanes 0 and 1 and zeros above (one 8-byte MOVQ load).
+template <class Pair>
+inline Float4 lanes_xy(const Pair& v) {
+    static_assert(sizeof(Pair) == 8);
+#if defined(__SSE2__)
+    return reinterpret_cast<Float4>(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v)));
+#else
+    float f[2];
+    std::memcpy(f, static_cast<const void*>(&v), sizeof f);
+    return Float4{f[0], f[1], 0.0f, 0.0f};
+#endif
+}
+
+// The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in"), x and y
+// side by side in lanes 0 and 1 (each lane the scalar arithmetic). Here, not behind a call,
+// so that the box and circle pairs compile into one function each.
+inline Manifold box_circle(Float4 lo, Float4 hi, Float4 c, float r) {
     // 09-102: "push in" the centre to find the closest point q of the box. A centre outside
     // leaves along c - q; a centre inside (or on the boundary, where c - q is zero or too
     // small to have a direction) is pushed out through the nearest face.
-    // The clamp as a min then a max (MINSS/MAXSS, no branch on where the centre lies). With
+    // The clamp as a min then a max (MINPS/MAXPS, no branch on where the centre lies). With
     // lo <= hi it gives detail::clamp's value bit for bit, also for -0 and NaN.
-    const auto clamp = [](float v, float l, float h) {
-        const float t = h < v ? h : v;
-        return l > t ? l : t;
-    };
-    const Vec2 q{clamp(c.x, lo.x, hi.x), clamp(c.y, lo.y, hi.y)};
-    const Vec2 d = c - q;
-    const float dist2 = dot(d, d);
+    const Float4 t = hi < c ? hi : c;
+    const Float4 d = c - (lo > t ? lo : t);
+    const Float4 d2 = d * d;
+    const float dist2 = d2[0] + d2[1];
     // The miss first, the common answer's one branch; whether the centre is inside is then
     // asked only of a hit. A NaN dist2 goes on to the inside test, as it always has; so does a
     // NaN r * r, whose NaN depth hit_with turns into the miss that `!(dist2 <= r * r)` gave.
     if (dist2 > r * r) return {};
     if (dist2 > 0.0f) {
         // One square root, one DIVPS for both components (each lane the scalar quotient).
-        using detail::Float4;
         const Float4 dist = detail::sqrt_nonneg(Float4{dist2, dist2, dist2, dist2});
-        const Float4 n = Float4{d.x, d.y, d.x, d.y} / dist;
+        const Float4 n = d / dist;
         return hit_with(r - dist[0], Vec2{n[0], n[1]});
     }
-    float depth = c.x - lo.x;
+    float depth = c[0] - lo[0];
     Vec2 normal{-1.0f, 0.0f};
-    if (hi.x - c.x < depth) { depth = hi.x - c.x; normal = {1.0f, 0.0f}; }
-    if (c.y - lo.y < depth) { depth = c.y - lo.y; normal = {0.0f, -1.0f}; }
-    if (hi.y - c.y < depth) { depth = hi.y - c.y; normal = {0.0f, 1.0f}; }
+    if (hi[0] - c[0] < depth) { depth = hi[0] - c[0]; normal = {1.0f, 0.0f}; }
+    if (c[1] - lo[1] < depth) { depth = c[1] - lo[1]; normal = {0.0f, -1.0f}; }
+    if (hi[1] - c[1] < depth) { depth = hi[1] - c[1]; normal = {0.0f, 1.0f}; }
     return hit_with(depth + r, normal);
 }
 }  // namespace
 
 Manifold collide(const Aabb& a, const Circle& b) {
     if (!valid(a) || !valid(b)) return {};
-    return box_circle(a.min, a.max, b.center, b.radius);
+    return box_circle(lanes_xy(a.min), lanes_xy(a.max), lanes_xy(b.center), b.radius);
 }
 
 Manifold collide(const Obb& a, const Circle& b) {
@@ -323,8 +335,14 @@ Manifold collide(const Obb& a, const Circle& b) {
     // only when the answer would be a hit: an invalid shape is a miss, so a miss needs no
     // check (the arithmetic on any input is defined, only the answer would be wrong).
     const Rot q = a.rotation();
-    const Vec2 local = inv_rotate(q, b.center - a.center);
-    Manifold m = box_circle(-a.half, a.half, local, b.radius);
+    // inv_rotate(q, v) = {c vx + s vy, -s vx + c vy}, v = the centre from the box's: the two
+    // coordinates side by side.
+    const Float4 v = lanes_xy(b.center) - lanes_xy(a.center);
+    const Float4 rot = lanes_xy(q);
+    const Float4 local = detail::bit_xor(rot, Float4{0.0f, -0.0f, 0.0f, -0.0f}) * __builtin_shufflevector(v, v, 0, 0, 0, 0) +
+                         __builtin_shufflevector(rot, rot, 1, 0, 1, 0) * __builtin_shufflevector(v, v, 1, 1, 1, 1);
+    const Float4 hi = lanes_xy(a.half);
+    Manifold m = box_circle(detail::bit_xor(hi, Float4{-0.0f, -0.0f, 0.0f, 0.0f}), hi, local, b.radius);
     if (!m.hit) return m;
     if (!(valid(a) && valid(b))) return {};
     m.normal = detail::plain_zeros(rotate(q, m.normal));
