@@ -121,15 +121,18 @@ struct FaceSeparations {
 inline FaceSeparations face_separations(const Polygon& poly, Float4 cc) {
     FaceSeparations f;
     const int n = poly.count();
+    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
     f.s0 = face_separations(poly, cc, 0);
     if (n <= 4) {
         f.s0 = dead_to_nan(f.s0, n);
         f.s1 = f.s2 = f.s3 = f.s0;
+        f.top = lane_max(f.s0, none);
     } else {
         f.s1 = face_separations(poly, cc, 1);
         if (n <= 8) {
             f.s1 = dead_to_nan(f.s1, n - 4);
             f.s2 = f.s3 = f.s0;
+            f.top = lane_max(f.s1, lane_max(f.s0, none));
         } else {
             f.s2 = face_separations(poly, cc, 2);
             if (n <= 12) {
@@ -138,9 +141,9 @@ inline FaceSeparations face_separations(const Polygon& poly, Float4 cc) {
             } else {
                 f.s3 = dead_to_nan(face_separations(poly, cc, 3), n - 12);
             }
+            f.top = lanes_max(f.s0, f.s1, f.s2, f.s3);
         }
     }
-    f.top = lanes_max(f.s0, f.s1, f.s2, f.s3);
     return f;
 }
 
