@@ -59,6 +59,19 @@ namespace {
 using detail::Float4;
 using detail::Int4;
 
+// A pair of floats (Vec2, Rot) in lanes 0 and 1 and zeros above (one 8-byte MOVQ load).
+template <class Pair>
+inline Float4 lanes_xy(const Pair& v) {
+    static_assert(sizeof(Pair) == 8);
+#if defined(__SSE2__)
+    return reinterpret_cast<Float4>(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v)));
+#else
+    float f[2];
+    std::memcpy(f, static_cast<const void*>(&v), sizeof f);
+    return Float4{f[0], f[1], 0.0f, 0.0f};
+#endif
+}
+
 // The slots of a 4-slot group past the first `live` (0..4): all bits set, which OR-ed into a
 // float makes it NaN, a value no comparison picks.
 constexpr Int4 kDeadSlots[5] = {{-1, -1, -1, -1}, {0, -1, -1, -1}, {0, 0, -1, -1}, {0, 0, 0, -1}, {0, 0, 0, 0}};
@@ -210,10 +223,13 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     // Beside the edge of greatest separation (c projects inside it, tested from each end so
     // that a long edge rounds neither), that edge is the nearest feature: its own normal and
     // the separation are exact where normalising c - p would round.
-    const Vec2 p0 = a.points()[max_edge];
-    const Vec2 p1 = a.points()[detail::next_index(max_edge, a.count())];
-    const Vec2 e = p1 - p0;
-    if (dot(c - p0, e) > 0.0f && dot(c - p1, e) < 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
+    // Both dot products side by side: dot(c - p0, e) in lane 0, dot(c - p1, e) in lane 2.
+    const Float4 p0 = lanes_xy(a.points()[max_edge]);
+    const Float4 p1 = lanes_xy(a.points()[detail::next_index(max_edge, a.count())]);
+    const Float4 e = p1 - p0;
+    const Float4 m = (cc - __builtin_shufflevector(p0, p1, 0, 1, 4, 5)) * __builtin_shufflevector(e, e, 0, 1, 0, 1);
+    const Float4 along = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
+    if ((along[0] > 0.0f) & (along[2] < 0.0f)) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
     // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
     // plain difference of points (exact for nearby floats).
     const NearestVertex nearest = nearest_vertex(a, cc);
@@ -281,21 +297,6 @@ Manifold collide_sat(const Polygon& a, const Circle& b) {
 }
 
 namespace {
-using detail::Float4;
-
-// A pair of floats (Vec2, Rot) in lanes 0 and 1 and zeros above (one 8-byte MOVQ load).
-template <class Pair>
-inline Float4 lanes_xy(const Pair& v) {
-    static_assert(sizeof(Pair) == 8);
-#if defined(__SSE2__)
-    return reinterpret_cast<Float4>(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v)));
-#else
-    float f[2];
-    std::memcpy(f, static_cast<const void*>(&v), sizeof f);
-    return Float4{f[0], f[1], 0.0f, 0.0f};
-#endif
-}
-
 // The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in"), x and y
 // side by side in lanes 0 and 1 (each lane the scalar arithmetic). Here, not behind a call,
 // so that the box and circle pairs compile into one function each.
