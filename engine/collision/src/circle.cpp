@@ -298,9 +298,10 @@ Manifold collide_sat(const Polygon& a, const Circle& b) {
 
 namespace {
 // The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in"), x and y
-// side by side in lanes 0 and 1 (each lane the scalar arithmetic). Here, not behind a call,
-// so that the box and circle pairs compile into one function each.
-inline Manifold box_circle(Float4 lo, Float4 hi, Float4 c, float r) {
+// side by side in lanes 0 and 1 (each lane the scalar arithmetic): false for a miss, else the
+// depth and normal that hit_with makes the answer (not yet checked to be finite). Here, not
+// behind a call, so that the box and circle pairs compile into one function each.
+inline bool box_circle_reach(Float4 lo, Float4 hi, Float4 c, float r, float& depth, Vec2& normal) {
     // 09-102: "push in" the centre to find the closest point q of the box. A centre outside
     // leaves along c - q; a centre inside (or on the boundary, where c - q is zero or too
     // small to have a direction) is pushed out through the nearest face.
@@ -313,25 +314,31 @@ inline Manifold box_circle(Float4 lo, Float4 hi, Float4 c, float r) {
     // The miss first, the common answer's one branch; whether the centre is inside is then
     // asked only of a hit. A NaN dist2 goes on to the inside test, as it always has; so does a
     // NaN r * r, whose NaN depth hit_with turns into the miss that `!(dist2 <= r * r)` gave.
-    if (dist2 > r * r) return {};
+    if (dist2 > r * r) return false;
     if (dist2 > 0.0f) {
         // One square root, one DIVPS for both components (each lane the scalar quotient).
         const Float4 dist = detail::sqrt_nonneg(Float4{dist2, dist2, dist2, dist2});
         const Float4 n = d / dist;
-        return hit_with(r - dist[0], Vec2{n[0], n[1]});
+        depth = r - dist[0];
+        normal = {n[0], n[1]};
+        return true;
     }
-    float depth = c[0] - lo[0];
-    Vec2 normal{-1.0f, 0.0f};
+    depth = c[0] - lo[0];
+    normal = {-1.0f, 0.0f};
     if (hi[0] - c[0] < depth) { depth = hi[0] - c[0]; normal = {1.0f, 0.0f}; }
     if (c[1] - lo[1] < depth) { depth = c[1] - lo[1]; normal = {0.0f, -1.0f}; }
     if (hi[1] - c[1] < depth) { depth = hi[1] - c[1]; normal = {0.0f, 1.0f}; }
-    return hit_with(depth + r, normal);
+    depth += r;
+    return true;
 }
 }  // namespace
 
 Manifold collide(const Aabb& a, const Circle& b) {
     if (!valid(a) || !valid(b)) return {};
-    return box_circle(lanes_xy(a.min), lanes_xy(a.max), lanes_xy(b.center), b.radius);
+    float depth;
+    Vec2 normal;
+    if (!box_circle_reach(lanes_xy(a.min), lanes_xy(a.max), lanes_xy(b.center), b.radius, depth, normal)) return {};
+    return hit_with(depth, normal);
 }
 
 Manifold collide(const Obb& a, const Circle& b) {
@@ -341,16 +348,27 @@ Manifold collide(const Obb& a, const Circle& b) {
     const Rot q = a.rotation();
     // inv_rotate(q, v) = {c vx + s vy, -s vx + c vy}, v = the centre from the box's: the two
     // coordinates side by side.
-    const Float4 v = lanes_xy(b.center) - lanes_xy(a.center);
+    const Float4 centre = lanes_xy(a.center), bc = lanes_xy(b.center);
+    const Float4 v = bc - centre;
     const Float4 rot = lanes_xy(q);
     const Float4 local = detail::bit_xor(rot, Float4{0.0f, -0.0f, 0.0f, -0.0f}) * __builtin_shufflevector(v, v, 0, 0, 0, 0) +
                          __builtin_shufflevector(rot, rot, 1, 0, 1, 0) * __builtin_shufflevector(v, v, 1, 1, 1, 1);
     const Float4 hi = lanes_xy(a.half);
-    Manifold m = box_circle(detail::bit_xor(hi, Float4{-0.0f, -0.0f, 0.0f, 0.0f}), hi, local, b.radius);
-    if (!m.hit) return m;
-    if (!(valid(a) && valid(b))) return {};
-    m.normal = detail::plain_zeros(rotate(q, m.normal));
-    return m;
+    float depth;
+    Vec2 normal;
+    if (!box_circle_reach(detail::bit_xor(hi, Float4{-0.0f, -0.0f, 0.0f, 0.0f}), hi, local, b.radius, depth, normal)) return {};
+    // hit_with's test (a finite depth and normal) and valid(a) && valid(b) in one: x - x is 0
+    // exactly for a finite x (see detail::all_finite), lane by lane, and the half extents and
+    // radius >= 0. A miss all the same, whichever fails.
+    const Float4 box = __builtin_shufflevector(centre, hi, 0, 1, 4, 5);  // centre x, y, half x, y
+    const Float4 rest = {a.angle(), bc[0], bc[1], b.radius * b.radius};
+    const Float4 answer = {depth, normal.x, normal.y, 0.0f};
+    const Float4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    const detail::Int4 finite = ((box - box) + (rest - rest)) + (answer - answer) == zero;
+    const detail::Int4 signs = Float4{hi[0], hi[1], b.radius, 0.0f} >= zero;
+    if (detail::lane_bits(finite & signs) != 0xfu) return {};
+    const Vec2 n = detail::plain_zeros(rotate(q, detail::plain_zeros(normal)));
+    return Manifold{true, depth > 0.0f ? depth : 0.0f, n};
 }
 
 Manifold collide(const Segment& a, const Circle& b) {
