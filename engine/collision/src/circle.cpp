@@ -323,12 +323,18 @@ inline bool box_circle_reach(Float4 lo, Float4 hi, Float4 c, float r, float& dep
         normal = {n[0], n[1]};
         return true;
     }
-    depth = c[0] - lo[0];
-    normal = {-1.0f, 0.0f};
-    if (hi[0] - c[0] < depth) { depth = hi[0] - c[0]; normal = {1.0f, 0.0f}; }
-    if (c[1] - lo[1] < depth) { depth = c[1] - lo[1]; normal = {0.0f, -1.0f}; }
-    if (hi[1] - c[1] < depth) { depth = hi[1] - c[1]; normal = {0.0f, 1.0f}; }
+    // Inside: out through the nearest face, the first of least depth in the order -x, +x, -y,
+    // +y (a NaN never wins; a NaN first depth stays): the depths side by side, their least by
+    // a chain of selects (MINSS), the face as the first lane equal to it (a lane mask): which
+    // face is data, too random for a branch.
+    static constexpr Vec2 kFaceNormals[4] = {{-1.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, -1.0f}, {0.0f, 1.0f}};
+    const Float4 face_depth = __builtin_shufflevector(c, hi, 0, 4, 1, 5) - __builtin_shufflevector(lo, c, 0, 4, 1, 5);
+    depth = face_depth[0];
+    for (int i = 1; i < 4; ++i) depth = face_depth[i] < depth ? face_depth[i] : depth;
+    const unsigned at = detail::lane_bits(face_depth == Float4{depth, depth, depth, depth});
+    const int face = at == 0 ? 0 : std::countr_zero(at);  // none: the first depth is NaN
     depth += r;
+    normal = kFaceNormals[face];
     return true;
 }
 }  // namespace
