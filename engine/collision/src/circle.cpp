@@ -169,11 +169,12 @@ inline float largest(Float4 top) {
 }
 
 // The first face whose separation is `most` (from lane masks, with no branch on the data): the
-// face a loop keeping the first strict maximum would name, or 0 when every face is NaN.
-inline int first_face_at(Float4 s0, Float4 s1, Float4 s2, Float4 s3, float most) {
+// face a loop keeping the first strict maximum would name, or 0 when every face is NaN. s2 and
+// s3 are copies of s0 for 8 faces or fewer (see FaceSeparations), so only past 8 are they read.
+inline int first_face_at(int count, Float4 s0, Float4 s1, Float4 s2, Float4 s3, float most) {
     const Float4 m = {most, most, most, most};
-    const unsigned faces = detail::lane_bits(s0 == m) | detail::lane_bits(s1 == m) << 4 | detail::lane_bits(s2 == m) << 8 |
-                           detail::lane_bits(s3 == m) << 12;
+    unsigned faces = detail::lane_bits(s0 == m) | detail::lane_bits(s1 == m) << 4;
+    if (count > 8) faces |= detail::lane_bits(s2 == m) << 8 | detail::lane_bits(s3 == m) << 12;
     return faces == 0 ? 0 : std::countr_zero(faces);
 }
 
@@ -217,8 +218,11 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
                                                Float4 s2, Float4 s3) {
     if (!valid(b)) return {};
     const Vec2 c = b.center;
-    const float max_sep = largest(lanes_max(s0, s1, s2, s3));
-    const int max_edge = first_face_at(s0, s1, s2, s3, max_sep);
+    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    Float4 top = lane_max(s1, lane_max(s0, none));
+    if (a.count() > 8) top = lane_max(s3, lane_max(s2, top));  // else copies of s0
+    const float max_sep = largest(top);
+    const int max_edge = first_face_at(a.count(), s0, s1, s2, s3, max_sep);
     if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);  // centre inside
     // Beside the edge of greatest separation (c projects inside it, tested from each end so
     // that a long edge rounds neither), that edge is the nearest feature: its own normal and
