@@ -51,7 +51,10 @@ Manifold scalar_polygon_circle(const Polygon& a, const Circle& b) {
     int face = 0;
     for (int i = 0; i < n; ++i) {
         const float s = N[i].x * (c.x - P[i].x) + N[i].y * (c.y - P[i].y);
-        if (s > most) { most = s; face = i; }
+        if (s > most) {
+            most = s;
+            face = i;
+        }
     }
     if (most > b.radius || !valid_circle(b)) return {};
     if (most <= 0.0f) return hit(b.radius - most, N[face]);
@@ -62,14 +65,18 @@ Manifold scalar_polygon_circle(const Polygon& a, const Circle& b) {
     for (int i = 0; i < n; ++i) {
         const Vec2 o = c - P[i];
         const float d2 = o.x * o.x + o.y * o.y;
-        if (d2 < dist2) { dist2 = d2; v = i; }
+        if (d2 < dist2) {
+            dist2 = d2;
+            v = i;
+        }
     }
     if (!(dist2 <= b.radius * b.radius)) return {};
     const Vec2 d = c - P[v];
     const Vec2 n_prev = N[(v + n - 1) % n], n_next = N[v];
     const float len = std::sqrt(dist2);
     Vec2 u = len > 0.0f && len < kInf ? Vec2{d.x / len, d.y / len} : N[face];
-    if (cross(n_prev, u) < 0.0f || cross(u, n_next) < 0.0f) u = dot(u, n_prev) >= dot(u, n_next) ? n_prev : n_next;
+    if (cross(n_prev, u) < 0.0f || cross(u, n_next) < 0.0f)
+        u = dot(u, n_prev) >= dot(u, n_next) ? n_prev : n_next;
     return hit(b.radius - len, u);
 }
 
@@ -87,9 +94,18 @@ Manifold scalar_box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
     }
     float depth = c.x - lo.x;
     Vec2 normal{-1.0f, 0.0f};
-    if (hi.x - c.x < depth) { depth = hi.x - c.x; normal = {1.0f, 0.0f}; }
-    if (c.y - lo.y < depth) { depth = c.y - lo.y; normal = {0.0f, -1.0f}; }
-    if (hi.y - c.y < depth) { depth = hi.y - c.y; normal = {0.0f, 1.0f}; }
+    if (hi.x - c.x < depth) {
+        depth = hi.x - c.x;
+        normal = {1.0f, 0.0f};
+    }
+    if (c.y - lo.y < depth) {
+        depth = c.y - lo.y;
+        normal = {0.0f, -1.0f};
+    }
+    if (hi.y - c.y < depth) {
+        depth = hi.y - c.y;
+        normal = {0.0f, 1.0f};
+    }
     return hit(depth + r, normal);
 }
 
@@ -106,7 +122,8 @@ Manifold scalar_obb_circle(const Obb& a, const Circle& b) {
     Manifold m = scalar_box_circle(-a.half, a.half, inv_rotate(q, b.center - a.center), b.radius);
     if (!m.hit) return m;
     const bool box_ok = std::isfinite(a.center.x) && std::isfinite(a.center.y) && std::isfinite(a.half.x) &&
-                        std::isfinite(a.half.y) && std::isfinite(a.angle()) && a.half.x >= 0.0f && a.half.y >= 0.0f;
+                        std::isfinite(a.half.y) && std::isfinite(a.angle()) && a.half.x >= 0.0f &&
+                        a.half.y >= 0.0f;
     if (!box_ok || !valid_circle(b)) return {};
     const Vec2 n = rotate(q, m.normal);
     m.normal = {n.x + 0.0f, n.y + 0.0f};
@@ -115,13 +132,13 @@ Manifold scalar_obb_circle(const Obb& a, const Circle& b) {
 
 ::testing::AssertionResult same_bits(const Manifold& got, const Manifold& want) {
     const auto bits = [](float v) { return std::bit_cast<std::uint32_t>(v); };
-    if (got.hit == want.hit && bits(got.depth) == bits(want.depth) && bits(got.normal.x) == bits(want.normal.x) &&
-        bits(got.normal.y) == bits(want.normal.y))
+    if (got.hit == want.hit && bits(got.depth) == bits(want.depth) &&
+        bits(got.normal.x) == bits(want.normal.x) && bits(got.normal.y) == bits(want.normal.y))
         return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "got hit " << got.hit << " depth " << got.depth << " normal (" << got.normal.x
-                                         << ", " << got.normal.y << "), the scalar loops give hit " << want.hit
-                                         << " depth " << want.depth << " normal (" << want.normal.x << ", "
-                                         << want.normal.y << ")";
+    return ::testing::AssertionFailure()
+           << "got hit " << got.hit << " depth " << got.depth << " normal (" << got.normal.x << ", "
+           << got.normal.y << "), the scalar loops give hit " << want.hit << " depth " << want.depth
+           << " normal (" << want.normal.x << ", " << want.normal.y << ")";
 }
 
 struct Draw {
@@ -166,16 +183,26 @@ TEST(CircleBits, PolygonCircleEveryVertexCount) {
             Vec2 c;
             float r = g.uniform(0.0f, 0.5f * scale);
             switch (g.below(5)) {
-            case 0: c = p; break;  // on a vertex
-            case 1: {              // beside a face, or past its ends, at about distance r
-                const Vec2 q = poly.points()[static_cast<std::size_t>((i + 1) % count)];
-                const float t = g.uniform(-0.5f, 1.5f), h = g.uniform(-1.0f, 1.5f) * r;
-                c = p + t * (q - p) + h * u;
-                break;
-            }
-            case 2: c = {g.uniform(-scale, scale), g.uniform(-scale, scale)}; break;
-            case 3: c = {std::round(g.uniform(-scale, scale)), std::round(g.uniform(-scale, scale))}; r = std::round(r); break;
-            default: c = p + g.uniform(0.0f, 1.2f) * r * normalize_or(u + poly.normals()[static_cast<std::size_t>((i + count - 1) % count)], u);
+                case 0:
+                    c = p;
+                    break;  // on a vertex
+                case 1: {   // beside a face, or past its ends, at about distance r
+                    const Vec2 q = poly.points()[static_cast<std::size_t>((i + 1) % count)];
+                    const float t = g.uniform(-0.5f, 1.5f), h = g.uniform(-1.0f, 1.5f) * r;
+                    c = p + t * (q - p) + h * u;
+                    break;
+                }
+                case 2:
+                    c = {g.uniform(-scale, scale), g.uniform(-scale, scale)};
+                    break;
+                case 3:
+                    c = {std::round(g.uniform(-scale, scale)), std::round(g.uniform(-scale, scale))};
+                    r = std::round(r);
+                    break;
+                default:
+                    c = p + g.uniform(0.0f, 1.2f) * r *
+                                normalize_or(
+                                    u + poly.normals()[static_cast<std::size_t>((i + count - 1) % count)], u);
             }
             const Circle circle{{g.wild(c.x), g.wild(c.y)}, g.wild(r)};
             SCOPED_TRACE(testing::Message() << count << " vertices, case " << k);
@@ -189,7 +216,8 @@ TEST(CircleBits, CircleCircle) {
     for (int k = 0; k < 200000; ++k) {
         const float s = k % 5 == 0 ? std::pow(10.0f, g.uniform(-20.0f, 20.0f)) : g.uniform(0.5f, 20.0f);
         Circle a{{g.uniform(-s, s), g.uniform(-s, s)}, g.uniform(0.0f, s)};
-        Circle b{{a.center.x + g.uniform(-2.0f, 2.0f) * s, a.center.y + g.uniform(-2.0f, 2.0f) * s}, g.uniform(0.0f, s)};
+        Circle b{{a.center.x + g.uniform(-2.0f, 2.0f) * s, a.center.y + g.uniform(-2.0f, 2.0f) * s},
+                 g.uniform(0.0f, s)};
         if (k % 3 == 0) {  // integers: exact touching and coincident centres
             a = {{std::round(a.center.x), std::round(a.center.y)}, std::round(a.radius)};
             b = {{std::round(b.center.x), std::round(b.center.y)}, std::round(b.radius)};
@@ -210,11 +238,12 @@ TEST(CircleBits, BoxCircle) {
                 k % 4 == 0 ? 0.0f : g.uniform(-7.0f, 7.0f));
         Circle c{{g.uniform(-2.0f, 2.0f) * s, g.uniform(-2.0f, 2.0f) * s}, g.uniform(0.0f, s)};
         if (k % 3 == 0) {  // integers and quarter turns: centres exactly on faces and corners
-            box = Obb({std::round(box.center.x), std::round(box.center.y)}, {std::round(box.half.x), std::round(box.half.y)},
-                      k % 2 == 0 ? 0.0f : test::kPi / 2.0f);
+            box = Obb({std::round(box.center.x), std::round(box.center.y)},
+                      {std::round(box.half.x), std::round(box.half.y)}, k % 2 == 0 ? 0.0f : test::kPi / 2.0f);
             c = {{std::round(c.center.x), std::round(c.center.y)}, std::round(c.radius)};
         }
-        box = Obb({g.wild(box.center.x), g.wild(box.center.y)}, {g.wild(box.half.x), g.wild(box.half.y)}, box.angle());
+        box = Obb({g.wild(box.center.x), g.wild(box.center.y)}, {g.wild(box.half.x), g.wild(box.half.y)},
+                  box.angle());
         c = {{g.wild(c.center.x), g.wild(c.center.y)}, g.wild(c.radius)};
         SCOPED_TRACE(testing::Message() << "case " << k);
         ASSERT_TRUE(same_bits(collide(box, c), scalar_obb_circle(box, c)));

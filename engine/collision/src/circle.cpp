@@ -17,11 +17,12 @@ using detail::valid;
 namespace {
 // collide(Circle, Circle) past its distance test, kept out of line (a tail call) so that the
 // miss, the common answer, is a short function whose {} needs no packing of a hit's fields.
-[[gnu::noinline]] Manifold circle_circle_near(const Circle& a, const Circle& b, float dx, float dy, float dist2, float r) {
+[[gnu::noinline]] Manifold circle_circle_near(const Circle& a, const Circle& b, float dx, float dy,
+                                              float dist2, float r) {
     // The radii as valid(Circle) checks them (r >= 0 and r^2 finite, so r1 + r2 is finite and
     // so is the depth), in one test; an infinite dist2 (r^2 may overflow) is a miss too.
-    if (!((a.radius >= 0.0f) & (a.radius * a.radius < INFINITY) & (b.radius >= 0.0f) & (b.radius * b.radius < INFINITY) &
-          (dist2 != INFINITY)))
+    if (!((a.radius >= 0.0f) & (a.radius * a.radius < INFINITY) & (b.radius >= 0.0f) &
+          (b.radius * b.radius < INFINITY) & (dist2 != INFINITY)))
         return {};
     // 09-72: mtd = (c1 - c2)/|c1 - c2| (r1 + r2 - |c1 - c2|) = -depth * normal. Coincident
     // centres have no direction; {1, 0} is the defined one (as in Box2D). One square root for
@@ -74,7 +75,8 @@ inline Float4 lanes_xy(const Pair& v) {
 
 // The slots of a 4-slot group past the first `live` (0..4): all bits set, which OR-ed into a
 // float makes it NaN, a value no comparison picks.
-constexpr Int4 kDeadSlots[5] = {{-1, -1, -1, -1}, {0, -1, -1, -1}, {0, 0, -1, -1}, {0, 0, 0, -1}, {0, 0, 0, 0}};
+constexpr Int4 kDeadSlots[5] = {
+    {-1, -1, -1, -1}, {0, -1, -1, -1}, {0, 0, -1, -1}, {0, 0, 0, -1}, {0, 0, 0, 0}};
 inline Float4 dead_to_nan(Float4 v, int live) {
     return reinterpret_cast<Float4>(reinterpret_cast<Int4>(v) | kDeadSlots[live]);
 }
@@ -214,8 +216,8 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
 // collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
 // Kept out of line (a tail call, the separations in registers) so that the common early out
 // is a short function with nothing to save.
-[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, Float4 cc, Float4 s0, Float4 s1,
-                                               Float4 s2, Float4 s3) {
+[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, Float4 cc, Float4 s0,
+                                               Float4 s1, Float4 s2, Float4 s3) {
     if (!valid(b)) return {};
     const Vec2 c = b.center;
     const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
@@ -231,7 +233,8 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     const Float4 p0 = lanes_xy(a.points()[max_edge]);
     const Float4 p1 = lanes_xy(a.points()[detail::next_index(max_edge, a.count())]);
     const Float4 e = p1 - p0;
-    const Float4 m = (cc - __builtin_shufflevector(p0, p1, 0, 1, 4, 5)) * __builtin_shufflevector(e, e, 0, 1, 0, 1);
+    const Float4 m =
+        (cc - __builtin_shufflevector(p0, p1, 0, 1, 4, 5)) * __builtin_shufflevector(e, e, 0, 1, 0, 1);
     const Float4 along = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
     if ((along[0] > 0.0f) & (along[2] < 0.0f)) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
     // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
@@ -332,7 +335,8 @@ inline bool box_circle_reach(Float4 lo, Float4 hi, Float4 c, float r, float& dep
     // a chain of selects (MINSS), the face as the first lane equal to it (a lane mask): which
     // face is data, too random for a branch.
     static constexpr Vec2 kFaceNormals[4] = {{-1.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, -1.0f}, {0.0f, 1.0f}};
-    const Float4 face_depth = __builtin_shufflevector(c, hi, 0, 4, 1, 5) - __builtin_shufflevector(lo, c, 0, 4, 1, 5);
+    const Float4 face_depth =
+        __builtin_shufflevector(c, hi, 0, 4, 1, 5) - __builtin_shufflevector(lo, c, 0, 4, 1, 5);
     depth = face_depth[0];
     for (int i = 1; i < 4; ++i) depth = face_depth[i] < depth ? face_depth[i] : depth;
     const unsigned at = detail::lane_bits(face_depth == Float4{depth, depth, depth, depth});
@@ -347,7 +351,8 @@ Manifold collide(const Aabb& a, const Circle& b) {
     if (!valid(a) || !valid(b)) return {};
     float depth;
     Vec2 normal;
-    if (!box_circle_reach(lanes_xy(a.min), lanes_xy(a.max), lanes_xy(b.center), b.radius, depth, normal)) return {};
+    if (!box_circle_reach(lanes_xy(a.min), lanes_xy(a.max), lanes_xy(b.center), b.radius, depth, normal))
+        return {};
     return hit_with(depth, normal);
 }
 
@@ -361,12 +366,15 @@ Manifold collide(const Obb& a, const Circle& b) {
     const Float4 centre = lanes_xy(a.center), bc = lanes_xy(b.center);
     const Float4 v = bc - centre;
     const Float4 rot = lanes_xy(q);
-    const Float4 local = detail::bit_xor(rot, Float4{0.0f, -0.0f, 0.0f, -0.0f}) * __builtin_shufflevector(v, v, 0, 0, 0, 0) +
-                         __builtin_shufflevector(rot, rot, 1, 0, 1, 0) * __builtin_shufflevector(v, v, 1, 1, 1, 1);
+    const Float4 local =
+        detail::bit_xor(rot, Float4{0.0f, -0.0f, 0.0f, -0.0f}) * __builtin_shufflevector(v, v, 0, 0, 0, 0) +
+        __builtin_shufflevector(rot, rot, 1, 0, 1, 0) * __builtin_shufflevector(v, v, 1, 1, 1, 1);
     const Float4 hi = lanes_xy(a.half);
     float depth;
     Vec2 normal;
-    if (!box_circle_reach(detail::bit_xor(hi, Float4{-0.0f, -0.0f, 0.0f, 0.0f}), hi, local, b.radius, depth, normal)) return {};
+    if (!box_circle_reach(detail::bit_xor(hi, Float4{-0.0f, -0.0f, 0.0f, 0.0f}), hi, local, b.radius, depth,
+                          normal))
+        return {};
     // hit_with's test (a finite depth and normal) and valid(a) && valid(b) in one: x - x is 0
     // exactly for a finite x (see detail::all_finite), lane by lane, and the half extents and
     // radius >= 0. A miss all the same, whichever fails.
