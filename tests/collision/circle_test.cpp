@@ -152,7 +152,7 @@ TEST(PolygonCircle, ZeroRadius) {
 }
 
 TEST(PolygonCircle, EveryVertexCountAndTiedFaces) {
-    // The faces are measured two at a time (3..16 vertices, odd counts with a spare lane); a
+    // The faces are measured four at a time (3..16 vertices, the slots past the last face NaN); a
     // centre inside must leave through the first face of greatest separation, exactly as a
     // loop over the faces names it. Regular polygons about (10, -7) and centres on a grid,
     // many on lines of symmetry, where faces tie.

@@ -14,107 +14,229 @@ namespace jostle {
 using detail::hit_with;
 using detail::valid;
 
-Manifold collide(const Circle& a, const Circle& b) {
-    // 09-71: compare squared distances, so no square root for a miss. Only the radii are
-    // checked up front (as valid(Circle) does: r >= 0 and r^2 finite, so r1 + r2 is finite
-    // and so is the depth): a NaN or infinite centre makes dist2 NaN or infinite, which the
-    // comparison below turns into a miss (an infinite dist2 explicitly).
-    if (!(a.radius >= 0.0f && a.radius * a.radius < INFINITY && b.radius >= 0.0f && b.radius * b.radius < INFINITY)) {
+namespace {
+// collide(Circle, Circle) past its distance test, kept out of line (a tail call) so that the
+// miss, the common answer, is a short function whose {} needs no packing of a hit's fields.
+[[gnu::noinline]] Manifold circle_circle_near(const Circle& a, const Circle& b, float dx, float dy,
+                                              float dist2, float r) {
+    // The radii as valid(Circle) checks them (r >= 0 and r^2 finite, so r1 + r2 is finite and
+    // so is the depth), in one test; an infinite dist2 (r^2 may overflow) is a miss too.
+    if (!((a.radius >= 0.0f) & (a.radius * a.radius < INFINITY) & (b.radius >= 0.0f) &
+          (b.radius * b.radius < INFINITY) & (dist2 != INFINITY)))
         return {};
-    }
+    // 09-72: mtd = (c1 - c2)/|c1 - c2| (r1 + r2 - |c1 - c2|) = -depth * normal. Coincident
+    // centres have no direction; {1, 0} is the defined one (as in Box2D). One square root for
+    // the depth and the normal, in every lane (SQRTPS: each lane std::sqrt's value), so that
+    // one DIVPS divides both components (each lane the scalar division's quotient).
+    using detail::Float4;
+    const Float4 len = detail::sqrt_nonneg(Float4{dist2, dist2, dist2, dist2});
+    Float4 n = {1.0f, 0.0f, 1.0f, 0.0f};
+    if (len[0] > 0.0f) n = detail::plain_zeros(Float4{dx, dy, dx, dy} / len);
+    // hit_with without its finiteness test, which cannot fail here: r is finite (valid
+    // radii), so are dist2 (tested), d (d.x^2 <= dist2) and len, and |d.x| / len is at most
+    // about 1 (dist2 >= fl(d.x^2); a dist2 rounded to 0 takes the {1, 0} branch).
+    const float depth = r - len[0];
+    Manifold m;
+    m.hit = true;
+    m.depth = depth > 0.0f ? depth : 0.0f;
+    std::memcpy(static_cast<void*>(&m.normal), &n, sizeof m.normal);  // lanes 0 and 1, kept in a register
+    return m;
+}
+}  // namespace
+
+Manifold collide(const Circle& a, const Circle& b) {
+    // 09-71: compare squared distances, so no square root for a miss. The radii are checked
+    // only for an answer that would be a hit (an invalid circle is a miss, and the arithmetic
+    // on any input is defined): a NaN or infinite centre makes dist2 NaN or infinite, which
+    // the comparison here or the test of dist2 there turns into a miss.
     const Vec2 d = b.center - a.center;
     const float dist2 = dot(d, d);
     const float r = a.radius + b.radius;
-    if (!(dist2 <= r * r) || dist2 == INFINITY) return {};
-    // 09-72: mtd = (c1 - c2)/|c1 - c2| (r1 + r2 - |c1 - c2|) = -depth * normal. Coincident
-    // centres have no direction; {1, 0} is the defined one (as in Box2D).
-    const float len = detail::sqrt_nonneg(dist2);  // one square root for the depth and the normal
-    return hit_with(r - len, len > 0.0f ? Vec2{d.x / len, d.y / len} : Vec2{1.0f, 0.0f});
+    if (!(dist2 <= r * r)) return {};
+    return circle_circle_near(a, b, d.x, d.y, dist2, r);
 }
 
 namespace {
-// dot(n_i, c - p_i) for faces 2k and 2k + 1 in lanes 0 and 2 (a Polygon stores its points and
-// normals x, y, x, y, so lane 0 + lane 1 and lane 2 + lane 3 are the two faces' dot products,
-// summed in the scalar order, x term + y term: each value is the scalar loop's bit for bit).
-// An odd count's missing face (slot n, which every Polygon has) is -inf.
-inline detail::Float4 face_pair_separation(const Polygon& poly, detail::Float4 cc, int k) {
-    detail::Float4 p, u;
-    std::memcpy(&p, poly.points().data() + 2 * k, sizeof p);
-    std::memcpy(&u, poly.normals().data() + 2 * k, sizeof u);
-    const detail::Float4 m = u * (cc - p);
-    detail::Float4 s = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
-    if (2 * k + 1 == poly.count()) s[2] = -INFINITY;
-    return s;
+using detail::Float4;
+using detail::Int4;
+
+// A pair of floats (Vec2, Rot) in lanes 0 and 1 and zeros above (one 8-byte MOVQ load).
+template <class Pair>
+inline Float4 lanes_xy(const Pair& v) {
+    static_assert(sizeof(Pair) == 8);
+#if defined(__SSE2__)
+    return reinterpret_cast<Float4>(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v)));
+#else
+    float f[2];
+    std::memcpy(f, static_cast<const void*>(&v), sizeof f);
+    return Float4{f[0], f[1], 0.0f, 0.0f};
+#endif
 }
 
-// How far the point is outside the polygon's farthest face (09-90's first step): the max over
-// the faces of dot(n_i, c - p_i), lane by lane (MAXPS: a NaN never wins, as in a loop's
-// `s > max`); -inf when every face gives NaN (past the limits).
-inline float max_face_separation(const Polygon& poly, detail::Float4 cc) {
-    detail::Float4 top = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    for (int k = 0; k < (poly.count() + 1) / 2; ++k) {
-        const detail::Float4 s = face_pair_separation(poly, cc, k);
-        top = s > top ? s : top;
-    }
-    return top[2] > top[0] ? top[2] : top[0];
+// The slots of a 4-slot group past the first `live` (0..4): all bits set, which OR-ed into a
+// float makes it NaN, a value no comparison picks.
+constexpr Int4 kDeadSlots[5] = {
+    {-1, -1, -1, -1}, {0, -1, -1, -1}, {0, 0, -1, -1}, {0, 0, 0, -1}, {0, 0, 0, 0}};
+inline Float4 dead_to_nan(Float4 v, int live) {
+    return reinterpret_cast<Float4>(reinterpret_cast<Int4>(v) | kDeadSlots[live]);
 }
 
-// The first face whose separation is `most` (found from bit masks, with no branch on the
-// data): the face a loop keeping the first strict maximum would name. Only the sign of a zero
-// separation may differ from that loop's, which no use of it can tell.
-inline int first_face_at(const Polygon& poly, detail::Float4 cc, float most) {
-    unsigned faces = 0;
-    for (int k = 0; k < (poly.count() + 1) / 2; ++k) {
-        const unsigned bits = detail::lane_bits(face_pair_separation(poly, cc, k) == most);
-        faces |= ((bits & 1u) | ((bits >> 1) & 2u)) << (2 * k);
+// Slots 4k..4k+3 of a Polygon's arrays (x, y, x, y: two 16-byte loads each; every Polygon has
+// 16 slots, so the loads stay inside it), each slot's x and y terms summed in the scalar
+// order, x term + y term: lane j is then the scalar value for slot 4k + j bit for bit.
+// `terms` gives each slot's two terms from the points (and normals) of two slots; the caller
+// turns the slots past the last vertex into NaN.
+template <class Terms>
+inline Float4 slot_quad(const Polygon& poly, int k, Terms&& terms) {
+    Float4 p0, p1, u0, u1;
+    std::memcpy(&p0, poly.points().data() + 4 * k, sizeof p0);
+    std::memcpy(&p1, poly.points().data() + 4 * k + 2, sizeof p1);
+    std::memcpy(&u0, poly.normals().data() + 4 * k, sizeof u0);
+    std::memcpy(&u1, poly.normals().data() + 4 * k + 2, sizeof u1);
+    const Float4 m0 = terms(p0, u0), m1 = terms(p1, u1);
+    return __builtin_shufflevector(m0, m1, 0, 2, 4, 6) + __builtin_shufflevector(m0, m1, 1, 3, 5, 7);
+}
+
+// dot(n_i, c - p_i) for faces 4k..4k+3.
+inline Float4 face_separations(const Polygon& poly, Float4 cc, int k) {
+    return slot_quad(poly, k, [cc](Float4 p, Float4 u) { return u * (cc - p); });
+}
+
+// |c - p_i|^2 as dot(o, o), o = c - p_i, for vertices 4k..4k+3.
+inline Float4 vertex_distances(const Polygon& poly, Float4 cc, int k) {
+    return slot_quad(poly, k, [cc](Float4 p, Float4) {
+        const Float4 o = cc - p;
+        return o * o;
+    });
+}
+
+// Each lane's larger value, `s > top ? s : top` as a loop keeps it (a NaN s never wins): MAXPS,
+// written out because GCC compiles the expression with a constant `top` into a compare and
+// a blend.
+inline Float4 lane_max(Float4 s, Float4 top) {
+#if defined(__SSE__)
+    return reinterpret_cast<Float4>(_mm_max_ps(reinterpret_cast<__m128>(s), reinterpret_cast<__m128>(top)));
+#else
+    return s > top ? s : top;
+#endif
+}
+
+// Each lane's largest of the four groups' (-inf for a lane of NaNs).
+inline Float4 lanes_max(Float4 s0, Float4 s1, Float4 s2, Float4 s3) {
+    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    return lane_max(s3, lane_max(s2, lane_max(s1, lane_max(s0, none))));
+}
+
+// The separations of a polygon's faces, four to a register (up to 16 faces: NaN in the slots
+// past the last face; the groups past the last are copies of s0, which change neither the
+// maximum nor the first face at it), and each lane's largest (-inf for a lane of NaNs).
+struct FaceSeparations {
+    Float4 s0, s1, s2, s3, top;
+};
+inline FaceSeparations face_separations(const Polygon& poly, Float4 cc) {
+    FaceSeparations f;
+    const int n = poly.count();
+    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    f.s0 = face_separations(poly, cc, 0);
+    if (n <= 4) {
+        f.s0 = dead_to_nan(f.s0, n);
+        f.s1 = f.s2 = f.s3 = f.s0;
+        f.top = lane_max(f.s0, none);
+    } else {
+        f.s1 = face_separations(poly, cc, 1);
+        if (n <= 8) {
+            f.s1 = dead_to_nan(f.s1, n - 4);
+            f.s2 = f.s3 = f.s0;
+            f.top = lane_max(f.s1, lane_max(f.s0, none));
+        } else {
+            f.s2 = face_separations(poly, cc, 2);
+            if (n <= 12) {
+                f.s2 = dead_to_nan(f.s2, n - 8);
+                f.s3 = f.s0;
+            } else {
+                f.s3 = dead_to_nan(face_separations(poly, cc, 3), n - 12);
+            }
+            f.top = lanes_max(f.s0, f.s1, f.s2, f.s3);
+        }
     }
-    return faces == 0 ? 0 : std::countr_zero(faces);  // none: every face NaN
+    return f;
+}
+
+// How far the point is outside the farthest face (09-90's first step): the largest of the
+// lanes' maxima. Only the sign of a zero maximum may depend on the order of the search, which
+// no use of it can tell (r - max_sep is +-0 either way, and a zero depth is returned as +0).
+inline float largest(Float4 top) {
+    top = lane_max(__builtin_shufflevector(top, top, 2, 3, 2, 3), top);
+    return top[1] > top[0] ? top[1] : top[0];
+}
+
+// The first face whose separation is `most` (from lane masks, with no branch on the data): the
+// face a loop keeping the first strict maximum would name, or 0 when every face is NaN. s2 and
+// s3 are copies of s0 for 8 faces or fewer (see FaceSeparations), so only past 8 are they read.
+inline int first_face_at(int count, Float4 s0, Float4 s1, Float4 s2, Float4 s3, float most) {
+    const Float4 m = {most, most, most, most};
+    unsigned faces = detail::lane_bits(s0 == m) | detail::lane_bits(s1 == m) << 4;
+    if (count > 8) faces |= detail::lane_bits(s2 == m) << 8 | detail::lane_bits(s3 == m) << 12;
+    return faces == 0 ? 0 : std::countr_zero(faces);
 }
 
 // The vertex nearest the point and its squared distance: the first i of least dot(o, o),
 // o = c - p_i (a loop keeping the first strict minimum), dist2 = +inf and vertex 0 when every
-// distance overflows. Two vertices a step (the face_pair_separation layout: lanes 0 and 2
-// are vertices 2k and 2k + 1, each the scalar o.x * o.x + o.y * o.y); each lane keeps its
-// own first minimum, so neither a branch per vertex nor a second pass is needed.
+// distance overflows. Four vertices a step, each lane keeping its own first minimum, so
+// neither a branch per vertex nor a second pass is needed.
 struct NearestVertex {
     float dist2 = INFINITY;
     int vertex = 0;
 };
-inline NearestVertex nearest_vertex(const Polygon& poly, detail::Float4 cc) {
-    using detail::Float4;
-    using detail::Int4;
+inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     Float4 best = {INFINITY, INFINITY, INFINITY, INFINITY};
     Int4 index = {0, 0, 0, 0};
-    for (int k = 0; k < (poly.count() + 1) / 2; ++k) {
-        Float4 p;
-        std::memcpy(&p, poly.points().data() + 2 * k, sizeof p);
-        const Float4 o = cc - p;
-        const Float4 m = o * o;
-        Float4 d2 = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
-        if (2 * k + 1 == poly.count()) d2[2] = INFINITY;  // no vertex in slot n
+    Int4 at = {0, 1, 2, 3};
+    for (int k = 0; k < (poly.count() + 3) / 4; ++k) {
+        const int live = poly.count() - 4 * k;
+        const Float4 d2 = dead_to_nan(vertex_distances(poly, cc, k), live < 4 ? live : 4);
         const Int4 closer = d2 < best;
         best = closer ? d2 : best;
-        index = closer ? Int4{2 * k, 2 * k, 2 * k + 1, 2 * k + 1} : index;
+        index = closer ? at : index;
+        at += 4;
     }
-    // Even vertices in lane 0, odd ones in lane 2: the smaller distance, or on a tie the
-    // smaller index.
-    const bool odd = best[2] < best[0] || (best[2] == best[0] && index[2] < index[0]);
-    return {odd ? best[2] : best[0], odd ? index[2] : index[0]};
+    // The lanes' minima, lanes 2 and 3 against 0 and 1, then lane 1 against lane 0: the
+    // smaller distance, or on a tie the smaller index (lane masks: which lane wins is data,
+    // too random for a branch).
+    const auto fold = [&](Float4 b_other, Int4 i_other) {
+        const Int4 take = (b_other < best) | ((b_other == best) & (i_other < index));
+        best = take ? b_other : best;
+        index = take ? i_other : index;
+    };
+    fold(__builtin_shufflevector(best, best, 2, 3, 2, 3), __builtin_shufflevector(index, index, 2, 3, 2, 3));
+    fold(__builtin_shufflevector(best, best, 1, 1, 1, 1), __builtin_shufflevector(index, index, 1, 1, 1, 1));
+    return {best[0], index[0]};
 }
 
 // collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
-// Kept out of line so that the common early out is a short function with nothing to save.
-[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, detail::Float4 cc, float max_sep) {
+// Kept out of line (a tail call, the separations in registers) so that the common early out
+// is a short function with nothing to save.
+[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, Float4 cc, Float4 s0,
+                                               Float4 s1, Float4 s2, Float4 s3) {
+    if (!valid(b)) return {};
     const Vec2 c = b.center;
-    const int max_edge = first_face_at(a, cc, max_sep);
+    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    Float4 top = lane_max(s1, lane_max(s0, none));
+    if (a.count() > 8) top = lane_max(s3, lane_max(s2, top));  // else copies of s0
+    const float max_sep = largest(top);
+    const int max_edge = first_face_at(a.count(), s0, s1, s2, s3, max_sep);
     if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);  // centre inside
     // Beside the edge of greatest separation (c projects inside it, tested from each end so
     // that a long edge rounds neither), that edge is the nearest feature: its own normal and
     // the separation are exact where normalising c - p would round.
-    const Vec2 p0 = a.points()[max_edge];
-    const Vec2 p1 = a.points()[detail::next_index(max_edge, a.count())];
-    const Vec2 e = p1 - p0;
-    if (dot(c - p0, e) > 0.0f && dot(c - p1, e) < 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
+    // Both dot products side by side: dot(c - p0, e) in lane 0, dot(c - p1, e) in lane 2.
+    const Float4 p0 = lanes_xy(a.points()[max_edge]);
+    const Float4 p1 = lanes_xy(a.points()[detail::next_index(max_edge, a.count())]);
+    const Float4 e = p1 - p0;
+    const Float4 m =
+        (cc - __builtin_shufflevector(p0, p1, 0, 1, 4, 5)) * __builtin_shufflevector(e, e, 0, 1, 0, 1);
+    const Float4 along = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
+    if ((along[0] > 0.0f) & (along[2] < 0.0f)) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
     // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
     // plain difference of points (exact for nearby floats).
     const NearestVertex nearest = nearest_vertex(a, cc);
@@ -141,10 +263,11 @@ Manifold collide(const Polygon& a, const Circle& b) {
     // The circle is checked only for an answer that would be a hit (an invalid circle is a
     // miss, and the arithmetic on any input is defined); the empty polygon has no faces.
     if (!valid(a)) return {};
-    const detail::Float4 cc = {b.center.x, b.center.y, b.center.x, b.center.y};
-    const float max_sep = max_face_separation(a, cc);
-    if (max_sep > b.radius || !valid(b)) return {};  // an edge normal separates: early out
-    return polygon_circle_near(a, b, cc, max_sep);
+    const Float4 cc = {b.center.x, b.center.y, b.center.x, b.center.y};
+    const FaceSeparations f = face_separations(a, cc);
+    // An edge normal separates (some lane's maximum beyond r, as the largest would be): early out.
+    if (detail::lane_bits(f.top > Float4{b.radius, b.radius, b.radius, b.radius}) != 0) return {};
+    return polygon_circle_near(a, b, cc, f.s0, f.s1, f.s2, f.s3);
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {
@@ -181,38 +304,56 @@ Manifold collide_sat(const Polygon& a, const Circle& b) {
 }
 
 namespace {
-// The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in"). Here, not
+// The circle-vs-box test in the box's own frame, box [lo, hi] (09-102 "push in"), x and y
+// side by side in lanes 0 and 1 (each lane the scalar arithmetic): false for a miss, else the
+// depth and normal that hit_with makes the answer (not yet checked to be finite). Here, not
 // behind a call, so that the box and circle pairs compile into one function each.
-inline Manifold box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
+inline bool box_circle_reach(Float4 lo, Float4 hi, Float4 c, float r, float& depth, Vec2& normal) {
     // 09-102: "push in" the centre to find the closest point q of the box. A centre outside
     // leaves along c - q; a centre inside (or on the boundary, where c - q is zero or too
     // small to have a direction) is pushed out through the nearest face.
-    // The clamp as a min then a max (MINSS/MAXSS, no branch on where the centre lies). With
+    // The clamp as a min then a max (MINPS/MAXPS, no branch on where the centre lies). With
     // lo <= hi it gives detail::clamp's value bit for bit, also for -0 and NaN.
-    const auto clamp = [](float v, float l, float h) {
-        const float t = h < v ? h : v;
-        return l > t ? l : t;
-    };
-    const Vec2 q{clamp(c.x, lo.x, hi.x), clamp(c.y, lo.y, hi.y)};
-    const Vec2 d = c - q;
-    const float dist2 = dot(d, d);
+    const Float4 t = hi < c ? hi : c;
+    const Float4 d = c - (lo > t ? lo : t);
+    const Float4 d2 = d * d;
+    const float dist2 = d2[0] + d2[1];
+    // The miss first, the common answer's one branch; whether the centre is inside is then
+    // asked only of a hit. A NaN dist2 goes on to the inside test, as it always has; so does a
+    // NaN r * r, whose NaN depth hit_with turns into the miss that `!(dist2 <= r * r)` gave.
+    if (dist2 > r * r) return false;
     if (dist2 > 0.0f) {
-        if (!(dist2 <= r * r)) return {};
-        const float dist = detail::sqrt_nonneg(dist2);
-        return hit_with(r - dist, Vec2{d.x / dist, d.y / dist});
+        // One square root, one DIVPS for both components (each lane the scalar quotient).
+        const Float4 dist = detail::sqrt_nonneg(Float4{dist2, dist2, dist2, dist2});
+        const Float4 n = d / dist;
+        depth = r - dist[0];
+        normal = {n[0], n[1]};
+        return true;
     }
-    float depth = c.x - lo.x;
-    Vec2 normal{-1.0f, 0.0f};
-    if (hi.x - c.x < depth) { depth = hi.x - c.x; normal = {1.0f, 0.0f}; }
-    if (c.y - lo.y < depth) { depth = c.y - lo.y; normal = {0.0f, -1.0f}; }
-    if (hi.y - c.y < depth) { depth = hi.y - c.y; normal = {0.0f, 1.0f}; }
-    return hit_with(depth + r, normal);
+    // Inside: out through the nearest face, the first of least depth in the order -x, +x, -y,
+    // +y (a NaN never wins; a NaN first depth stays): the depths side by side, their least by
+    // a chain of selects (MINSS), the face as the first lane equal to it (a lane mask): which
+    // face is data, too random for a branch.
+    static constexpr Vec2 kFaceNormals[4] = {{-1.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, -1.0f}, {0.0f, 1.0f}};
+    const Float4 face_depth =
+        __builtin_shufflevector(c, hi, 0, 4, 1, 5) - __builtin_shufflevector(lo, c, 0, 4, 1, 5);
+    depth = face_depth[0];
+    for (int i = 1; i < 4; ++i) depth = face_depth[i] < depth ? face_depth[i] : depth;
+    const unsigned at = detail::lane_bits(face_depth == Float4{depth, depth, depth, depth});
+    const int face = at == 0 ? 0 : std::countr_zero(at);  // none: the first depth is NaN
+    depth += r;
+    normal = kFaceNormals[face];
+    return true;
 }
 }  // namespace
 
 Manifold collide(const Aabb& a, const Circle& b) {
     if (!valid(a) || !valid(b)) return {};
-    return box_circle(a.min, a.max, b.center, b.radius);
+    float depth;
+    Vec2 normal;
+    if (!box_circle_reach(lanes_xy(a.min), lanes_xy(a.max), lanes_xy(b.center), b.radius, depth, normal))
+        return {};
+    return hit_with(depth, normal);
 }
 
 Manifold collide(const Obb& a, const Circle& b) {
@@ -220,12 +361,32 @@ Manifold collide(const Obb& a, const Circle& b) {
     // only when the answer would be a hit: an invalid shape is a miss, so a miss needs no
     // check (the arithmetic on any input is defined, only the answer would be wrong).
     const Rot q = a.rotation();
-    const Vec2 local = inv_rotate(q, b.center - a.center);
-    Manifold m = box_circle(-a.half, a.half, local, b.radius);
-    if (!m.hit) return m;
-    if (!(valid(a) && valid(b))) return {};
-    m.normal = detail::plain_zeros(rotate(q, m.normal));
-    return m;
+    // inv_rotate(q, v) = {c vx + s vy, -s vx + c vy}, v = the centre from the box's: the two
+    // coordinates side by side.
+    const Float4 centre = lanes_xy(a.center), bc = lanes_xy(b.center);
+    const Float4 v = bc - centre;
+    const Float4 rot = lanes_xy(q);
+    const Float4 local =
+        detail::bit_xor(rot, Float4{0.0f, -0.0f, 0.0f, -0.0f}) * __builtin_shufflevector(v, v, 0, 0, 0, 0) +
+        __builtin_shufflevector(rot, rot, 1, 0, 1, 0) * __builtin_shufflevector(v, v, 1, 1, 1, 1);
+    const Float4 hi = lanes_xy(a.half);
+    float depth;
+    Vec2 normal;
+    if (!box_circle_reach(detail::bit_xor(hi, Float4{-0.0f, -0.0f, 0.0f, 0.0f}), hi, local, b.radius, depth,
+                          normal))
+        return {};
+    // hit_with's test (a finite depth and normal) and valid(a) && valid(b) in one: x - x is 0
+    // exactly for a finite x (see detail::all_finite), lane by lane, and the half extents and
+    // radius >= 0. A miss all the same, whichever fails.
+    const Float4 box = __builtin_shufflevector(centre, hi, 0, 1, 4, 5);  // centre x, y, half x, y
+    const Float4 rest = {a.angle(), bc[0], bc[1], b.radius * b.radius};
+    const Float4 answer = {depth, normal.x, normal.y, 0.0f};
+    const Float4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    const detail::Int4 finite = ((box - box) + (rest - rest)) + (answer - answer) == zero;
+    const detail::Int4 signs = Float4{hi[0], hi[1], b.radius, 0.0f} >= zero;
+    if (detail::lane_bits(finite & signs) != 0xfu) return {};
+    const Vec2 n = detail::plain_zeros(rotate(q, detail::plain_zeros(normal)));
+    return Manifold{true, depth > 0.0f ? depth : 0.0f, n};
 }
 
 Manifold collide(const Segment& a, const Circle& b) {

@@ -113,6 +113,17 @@ inline float sqrt_nonneg(float v) {
 #endif
 }
 
+// The same for four lanes (SQRTPS: each lane IEEE's correctly rounded root, std::sqrt's value).
+inline Float4 sqrt_nonneg(Float4 v) {
+#if defined(__SSE__)
+    return reinterpret_cast<Float4>(_mm_sqrt_ps(reinterpret_cast<__m128>(v)));
+#else
+    return Float4{std::sqrt(v[0]), std::sqrt(v[1]), std::sqrt(v[2]), std::sqrt(v[3])};
+#endif
+}
+// plain_zeros lane by lane (-0 + 0 is +0, every other x + 0 is x).
+inline Float4 plain_zeros(Float4 v) { return v + Float4{0.0f, 0.0f, 0.0f, 0.0f}; }
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #define JOSTLE_AVX2_PATHS 1
 // Eight floats side by side, for the AVX2 paths chosen at run time (a target attribute on the

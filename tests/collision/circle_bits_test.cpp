@@ -1,0 +1,256 @@
+// The circle pairs' lane-parallel code (circle.cpp: four faces or vertices to a register with
+// NaN in the slots past the last, x and y side by side, one DIVPS for a normal) against the
+// plain scalar loops it replaced, bit for bit: hit, depth and normal, on seeded random shapes of
+// every vertex count, centres inside, beside edges, in vertex regions, on vertices and on a
+// grid of integers (ties), and on inputs past the limits (NaN, infinities, overflow).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "test_shapes.h"
+
+namespace jostle {
+namespace {
+
+using test::kInf;
+using test::kNan;
+
+bool finite3(float a, float b, float c) { return std::isfinite(a) && std::isfinite(b) && std::isfinite(c); }
+bool valid_circle(const Circle& c) {
+    return finite3(c.center.x, c.center.y, c.radius * c.radius) && c.radius >= 0.0f;
+}
+// hit_with: a non-finite answer is a miss; the depth is clamped at 0 and -0 components become +0.
+Manifold hit(float depth, Vec2 n) {
+    if (!finite3(depth, n.x, n.y)) return {};
+    return {true, depth > 0.0f ? depth : 0.0f, {n.x + 0.0f, n.y + 0.0f}};
+}
+
+Manifold scalar_circle_circle(const Circle& a, const Circle& b) {
+    if (!valid_circle(a) || !valid_circle(b)) return {};
+    const Vec2 d = b.center - a.center;
+    const float dist2 = d.x * d.x + d.y * d.y;
+    const float r = a.radius + b.radius;
+    if (!(dist2 <= r * r) || dist2 == kInf) return {};
+    const float len = std::sqrt(dist2);
+    return hit(r - len, len > 0.0f ? Vec2{d.x / len, d.y / len} : Vec2{1.0f, 0.0f});
+}
+
+Manifold scalar_polygon_circle(const Polygon& a, const Circle& b) {
+    const int n = a.count();
+    if (n < 3) return {};
+    const Vec2 c = b.center;
+    const auto P = a.points();
+    const auto N = a.normals();
+    float most = -kInf;
+    int face = 0;
+    for (int i = 0; i < n; ++i) {
+        const float s = N[i].x * (c.x - P[i].x) + N[i].y * (c.y - P[i].y);
+        if (s > most) {
+            most = s;
+            face = i;
+        }
+    }
+    if (most > b.radius || !valid_circle(b)) return {};
+    if (most <= 0.0f) return hit(b.radius - most, N[face]);
+    const Vec2 p0 = P[face], p1 = P[(face + 1) % n], e = p1 - p0;
+    if (dot(c - p0, e) > 0.0f && dot(c - p1, e) < 0.0f) return hit(b.radius - most, N[face]);
+    float dist2 = kInf;
+    int v = 0;
+    for (int i = 0; i < n; ++i) {
+        const Vec2 o = c - P[i];
+        const float d2 = o.x * o.x + o.y * o.y;
+        if (d2 < dist2) {
+            dist2 = d2;
+            v = i;
+        }
+    }
+    if (!(dist2 <= b.radius * b.radius)) return {};
+    const Vec2 d = c - P[v];
+    const Vec2 n_prev = N[(v + n - 1) % n], n_next = N[v];
+    const float len = std::sqrt(dist2);
+    Vec2 u = len > 0.0f && len < kInf ? Vec2{d.x / len, d.y / len} : N[face];
+    if (cross(n_prev, u) < 0.0f || cross(u, n_next) < 0.0f)
+        u = dot(u, n_prev) >= dot(u, n_next) ? n_prev : n_next;
+    return hit(b.radius - len, u);
+}
+
+Manifold scalar_box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
+    const auto clamp = [](float v, float l, float h) {  // min, then max
+        const float t = h < v ? h : v;
+        return l > t ? l : t;
+    };
+    const Vec2 d = c - Vec2{clamp(c.x, lo.x, hi.x), clamp(c.y, lo.y, hi.y)};
+    const float dist2 = d.x * d.x + d.y * d.y;
+    if (dist2 > 0.0f) {
+        if (!(dist2 <= r * r)) return {};
+        const float dist = std::sqrt(dist2);
+        return hit(r - dist, Vec2{d.x / dist, d.y / dist});
+    }
+    float depth = c.x - lo.x;
+    Vec2 normal{-1.0f, 0.0f};
+    if (hi.x - c.x < depth) {
+        depth = hi.x - c.x;
+        normal = {1.0f, 0.0f};
+    }
+    if (c.y - lo.y < depth) {
+        depth = c.y - lo.y;
+        normal = {0.0f, -1.0f};
+    }
+    if (hi.y - c.y < depth) {
+        depth = hi.y - c.y;
+        normal = {0.0f, 1.0f};
+    }
+    return hit(depth + r, normal);
+}
+
+Manifold scalar_aabb_circle(const Aabb& a, const Circle& b) {
+    const bool box_ok = std::isfinite(a.min.x) && std::isfinite(a.min.y) && std::isfinite(a.max.x) &&
+                        std::isfinite(a.max.y) && a.min.x <= a.max.x && a.min.y <= a.max.y &&
+                        std::isfinite(a.max.x - a.min.x) && std::isfinite(a.max.y - a.min.y);
+    if (!box_ok || !valid_circle(b)) return {};
+    return scalar_box_circle(a.min, a.max, b.center, b.radius);
+}
+
+Manifold scalar_obb_circle(const Obb& a, const Circle& b) {
+    const Rot q = a.rotation();
+    Manifold m = scalar_box_circle(-a.half, a.half, inv_rotate(q, b.center - a.center), b.radius);
+    if (!m.hit) return m;
+    const bool box_ok = std::isfinite(a.center.x) && std::isfinite(a.center.y) && std::isfinite(a.half.x) &&
+                        std::isfinite(a.half.y) && std::isfinite(a.angle()) && a.half.x >= 0.0f &&
+                        a.half.y >= 0.0f;
+    if (!box_ok || !valid_circle(b)) return {};
+    const Vec2 n = rotate(q, m.normal);
+    m.normal = {n.x + 0.0f, n.y + 0.0f};
+    return m;
+}
+
+::testing::AssertionResult same_bits(const Manifold& got, const Manifold& want) {
+    const auto bits = [](float v) { return std::bit_cast<std::uint32_t>(v); };
+    if (got.hit == want.hit && bits(got.depth) == bits(want.depth) &&
+        bits(got.normal.x) == bits(want.normal.x) && bits(got.normal.y) == bits(want.normal.y))
+        return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << "got hit " << got.hit << " depth " << got.depth << " normal (" << got.normal.x << ", "
+           << got.normal.y << "), the scalar loops give hit " << want.hit << " depth " << want.depth
+           << " normal (" << want.normal.x << ", " << want.normal.y << ")";
+}
+
+struct Draw {
+    std::mt19937 rng{20261126};
+    float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); }
+    int below(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng); }
+    // Now and then a value past the limits instead of v.
+    float wild(float v) {
+        constexpr float kValues[] = {kNan, kInf, -kInf, 0.0f, -0.0f, 3e38f, -3e38f, 2e19f, 1e-40f, -1.0f};
+        return below(12) == 0 ? kValues[below(10)] : v;
+    }
+};
+
+Polygon random_convex(Draw& g, int n, float scale, bool integers) {
+    for (;;) {
+        std::vector<float> angle(static_cast<std::size_t>(n));
+        for (float& t : angle) t = g.uniform(0.0f, 2.0f * test::kPi);
+        std::sort(angle.begin(), angle.end());
+        const float rx = scale * g.uniform(0.2f, 1.0f), ry = scale * g.uniform(0.2f, 1.0f);
+        std::vector<Vec2> pts;
+        for (const float t : angle) {
+            Vec2 p{rx * std::cos(t), ry * std::sin(t)};
+            if (integers) p = {std::round(p.x), std::round(p.y)};
+            pts.push_back(p);
+        }
+        if (std::optional<Polygon> p = make_polygon(pts)) return *p;
+    }
+}
+
+TEST(CircleBits, PolygonCircleEveryVertexCount) {
+    Draw g;
+    for (int n = 3; n <= kMaxPolygonVertices; ++n) {
+        for (int k = 0; k < 3000; ++k) {
+            const bool integers = k % 4 == 0;
+            // Integer points, few enough per unit that most draws are strictly convex.
+            const float scale = integers ? 4.0f * static_cast<float>(n) : g.uniform(0.5f, 20.0f);
+            const Polygon poly = random_convex(g, n, scale, integers);
+            const int count = poly.count();  // collinear integer points may have been dropped
+            const int i = g.below(count);
+            const Vec2 p = poly.points()[static_cast<std::size_t>(i)];
+            const Vec2 u = poly.normals()[static_cast<std::size_t>(i)];
+            Vec2 c;
+            float r = g.uniform(0.0f, 0.5f * scale);
+            switch (g.below(5)) {
+                case 0:
+                    c = p;
+                    break;  // on a vertex
+                case 1: {   // beside a face, or past its ends, at about distance r
+                    const Vec2 q = poly.points()[static_cast<std::size_t>((i + 1) % count)];
+                    const float t = g.uniform(-0.5f, 1.5f), h = g.uniform(-1.0f, 1.5f) * r;
+                    c = p + t * (q - p) + h * u;
+                    break;
+                }
+                case 2:
+                    c = {g.uniform(-scale, scale), g.uniform(-scale, scale)};
+                    break;
+                case 3:
+                    c = {std::round(g.uniform(-scale, scale)), std::round(g.uniform(-scale, scale))};
+                    r = std::round(r);
+                    break;
+                default:
+                    c = p + g.uniform(0.0f, 1.2f) * r *
+                                normalize_or(
+                                    u + poly.normals()[static_cast<std::size_t>((i + count - 1) % count)], u);
+            }
+            const Circle circle{{g.wild(c.x), g.wild(c.y)}, g.wild(r)};
+            SCOPED_TRACE(testing::Message() << count << " vertices, case " << k);
+            ASSERT_TRUE(same_bits(collide(poly, circle), scalar_polygon_circle(poly, circle)));
+        }
+    }
+}
+
+TEST(CircleBits, CircleCircle) {
+    Draw g;
+    for (int k = 0; k < 200000; ++k) {
+        const float s = k % 5 == 0 ? std::pow(10.0f, g.uniform(-20.0f, 20.0f)) : g.uniform(0.5f, 20.0f);
+        Circle a{{g.uniform(-s, s), g.uniform(-s, s)}, g.uniform(0.0f, s)};
+        Circle b{{a.center.x + g.uniform(-2.0f, 2.0f) * s, a.center.y + g.uniform(-2.0f, 2.0f) * s},
+                 g.uniform(0.0f, s)};
+        if (k % 3 == 0) {  // integers: exact touching and coincident centres
+            a = {{std::round(a.center.x), std::round(a.center.y)}, std::round(a.radius)};
+            b = {{std::round(b.center.x), std::round(b.center.y)}, std::round(b.radius)};
+        }
+        if (k % 17 == 0) b.center = a.center;
+        a = {{g.wild(a.center.x), g.wild(a.center.y)}, g.wild(a.radius)};
+        b = {{g.wild(b.center.x), g.wild(b.center.y)}, g.wild(b.radius)};
+        SCOPED_TRACE(testing::Message() << "case " << k);
+        ASSERT_TRUE(same_bits(collide(a, b), scalar_circle_circle(a, b)));
+    }
+}
+
+TEST(CircleBits, BoxCircle) {
+    Draw g;
+    for (int k = 0; k < 200000; ++k) {
+        const float s = k % 5 == 0 ? std::pow(10.0f, g.uniform(-20.0f, 20.0f)) : g.uniform(0.5f, 20.0f);
+        Obb box({g.uniform(-s, s), g.uniform(-s, s)}, {g.uniform(0.0f, s), g.uniform(0.0f, s)},
+                k % 4 == 0 ? 0.0f : g.uniform(-7.0f, 7.0f));
+        Circle c{{g.uniform(-2.0f, 2.0f) * s, g.uniform(-2.0f, 2.0f) * s}, g.uniform(0.0f, s)};
+        if (k % 3 == 0) {  // integers and quarter turns: centres exactly on faces and corners
+            box = Obb({std::round(box.center.x), std::round(box.center.y)},
+                      {std::round(box.half.x), std::round(box.half.y)}, k % 2 == 0 ? 0.0f : test::kPi / 2.0f);
+            c = {{std::round(c.center.x), std::round(c.center.y)}, std::round(c.radius)};
+        }
+        box = Obb({g.wild(box.center.x), g.wild(box.center.y)}, {g.wild(box.half.x), g.wild(box.half.y)},
+                  box.angle());
+        c = {{g.wild(c.center.x), g.wild(c.center.y)}, g.wild(c.radius)};
+        SCOPED_TRACE(testing::Message() << "case " << k);
+        ASSERT_TRUE(same_bits(collide(box, c), scalar_obb_circle(box, c)));
+        const Aabb aabb{box.center - box.half, box.center + box.half};
+        ASSERT_TRUE(same_bits(collide(aabb, c), scalar_aabb_circle(aabb, c)));
+    }
+}
+
+}  // namespace
+}  // namespace jostle
