@@ -42,7 +42,9 @@ void cells_of(const Aabb& b, float inverse_size, std::int32_t* cells) {
 void cells_of(const Aabb& b, float inverse_size, std::int32_t* cells) {
     const float v[4] = {b.min.x, b.min.y, b.max.x, b.max.y};
     for (int k = 0; k < 4; ++k) {
-        const float t = std::min(std::max(v[k] * inverse_size, -kMaxCell), kMaxCell);
+        // NaN goes to -kMaxCell, as MAXPS does above (and never reaches the conversion).
+        const float s = v[k] * inverse_size;
+        const float t = s >= -kMaxCell ? (s <= kMaxCell ? s : kMaxCell) : -kMaxCell;
         const auto c = static_cast<std::int32_t>(t);
         cells[k] = c - static_cast<std::int32_t>(t < static_cast<float>(c));
     }
