@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <numbers>
+#include <utility>
 
 #include "internal.h"
 #include "jostle/core/error.h"
@@ -39,6 +41,8 @@ float mixed_restitution(const EntityDesc& a, const EntityDesc& b) {
     return std::isfinite(e) && e > 0.0f ? e : 0.0f;
 }
 
+std::size_t g_marks_per_pair = 2;  // detail::set_marks_per_pair_before_visiting_all
+
 // Resets the flag even when the event handler throws.
 struct StepGuard {
     bool& flag;
@@ -47,6 +51,10 @@ struct StepGuard {
 };
 
 }  // namespace
+
+std::size_t detail::set_marks_per_pair_before_visiting_all(std::size_t n) {
+    return std::exchange(g_marks_per_pair, n);
+}
 
 void World::step(float dt) {
     Impl& w = *impl_;
@@ -536,9 +544,26 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     // become dirty. One whose bounds do not touch would be turned away when visited, unless
     // one of its bodies moves again first, which marks it then: the same pushes as marking
     // every pair of the body, without setting and visiting the many that are apart.
+    // In a pile every body has a pair with every other, and marking them one move at a time
+    // costs pushes x pairs per body. Visiting a clean pair pushes nothing (see above), so
+    // treating every pair as dirty is always allowed: once a pass's marks outnumber twice
+    // its pairs (g_marks_per_pair), the rest of the pass and all of the next visit every
+    // pair instead (a pass then costs at most a few times its pairs; same pushes, same order).
     std::vector<bool> moved(slots.size(), false);
+    bool all_now = false;   // this pass visits every pair from its cursor on
+    bool all_next = false;  // the next pass visits every pair
+    std::size_t marks = 0;  // this pass's so far
+    const std::size_t mark_budget = g_marks_per_pair == 0                            ? 0
+                                    : g_marks_per_pair > SIZE_MAX / (n_pairs + 65u) ? SIZE_MAX
+                                                                                     : g_marks_per_pair * n_pairs + 64;
     const auto body_moved = [&](std::uint32_t i) {
         moved[i] = true;
+        if (all_now && all_next) return;  // every mark would be redundant
+        marks += pairs_of.first[i + 1] - pairs_of.first[i];
+        if (marks > mark_budget) {
+            all_now = all_next = true;
+            return;
+        }
         for (std::uint32_t e = pairs_of.first[i]; e < pairs_of.first[i + 1]; ++e) {
             const std::uint32_t k = pairs_of.edge[e];
             if (touch(boxes[push_pairs[k].a], boxes[push_pairs[k].b])) set_dirty(k);
@@ -575,7 +600,12 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         const bool shock = pass >= passes / 2;
         const std::vector<std::uint64_t>& bits = shock ? dirty_ground_up : dirty_in_order;
         float deepest = 0.0f;
-        for (std::uint32_t r = next_dirty(bits, 0); r < n_pairs; r = next_dirty(bits, r + 1)) {
+        // (Marks made before the first pass count toward it: a pile is found at once.)
+        all_now = all_next;
+        all_next = false;
+        marks = 0;
+        const auto next = [&](std::uint32_t from) { return all_now ? from : next_dirty(bits, from); };
+        for (std::uint32_t r = next(0); r < n_pairs; r = next(r + 1)) {
             const std::uint32_t k = shock ? ground_up[r] : r;
             dirty_in_order[k / 64] &= ~(std::uint64_t{1} << (k % 64));
             dirty_ground_up[rank_ground_up[k] / 64] &= ~(std::uint64_t{1} << (rank_ground_up[k] % 64));

@@ -329,4 +329,12 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+namespace detail {
+// The relaxation passes stop marking a moved body's pairs one by one and visit every pair
+// instead once a pass's marks exceed this many per pair (default 2; see resolve in
+// step.cpp): the same pushes either way. For tests: 0 switches at the first mark, a huge
+// value never. Returns the previous value. Not thread-safe: tests only.
+std::size_t set_marks_per_pair_before_visiting_all(std::size_t n);
+}  // namespace detail
+
 }  // namespace jostle
