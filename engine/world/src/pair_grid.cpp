@@ -52,6 +52,12 @@ void cells_of(const Aabb& b, float inverse_size, std::int32_t* cells) {
 #endif
 static_assert(sizeof(Aabb) == 4 * sizeof(float));
 
+// hi - lo for cell coordinates hi >= lo, in unsigned arithmetic: cells reach +-2^30, so the
+// difference can exceed int32 (which would be undefined behaviour), never uint32.
+std::uint32_t span(std::int32_t hi, std::int32_t lo) {
+    return static_cast<std::uint32_t>(hi) - static_cast<std::uint32_t>(lo);
+}
+
 // Neighbouring cells land in unrelated buckets (a multiplicative hash, then its high bits
 // mixed down).
 std::uint32_t bucket_of(std::int32_t x, std::int32_t y, std::uint32_t mask) {
@@ -222,11 +228,11 @@ template <bool kDense>
 std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_count, const Cells& region,
                              int bits) {
     const auto n = static_cast<std::uint32_t>(items.size());
-    const auto width = static_cast<std::uint32_t>(region.x1 - region.x0 + 1);  // dense only
+    const std::uint32_t width = span(region.x1, region.x0) + 1;  // dense only
     std::uint32_t buckets = 0;
     std::uint32_t mask = 0;
     if constexpr (kDense) {
-        buckets = width * static_cast<std::uint32_t>(region.y1 - region.y0 + 1);
+        buckets = width * (span(region.y1, region.y0) + 1);
     } else {
         // A power of two, about one per entry.
         buckets = static_cast<std::uint32_t>(std::bit_ceil(std::clamp<std::size_t>(entry_count, 16, 1u << 30)));
@@ -234,7 +240,7 @@ std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_
     }
     const auto bucket_at = [&](std::int32_t x, std::int32_t y) {
         if constexpr (kDense) {
-            return static_cast<std::uint32_t>(y - region.y0) * width + static_cast<std::uint32_t>(x - region.x0);
+            return span(y, region.y0) * width + span(x, region.x0);
         } else {
             return bucket_of(x, y, mask);
         }
@@ -243,12 +249,12 @@ std::size_t PairGrid::gather(std::span<const GridItem> items, std::size_t entry_
     // on its shape: the cells it lacks go to a spare bucket past the last, never searched.
     const std::uint32_t spare = buckets;
     const auto small = [](const Cells& c) {
-        return (static_cast<std::uint32_t>(c.x1 - c.x0) | static_cast<std::uint32_t>(c.y1 - c.y0)) <= 1;
+        return (span(c.x1, c.x0) | span(c.y1, c.y0)) <= 1;
     };
     const auto four = [&](const Cells& c) {
         const std::uint32_t b = bucket_at(c.x0, c.y0);
-        const auto wide = 0u - static_cast<std::uint32_t>(c.x1 - c.x0);  // all ones or none
-        const auto tall = 0u - static_cast<std::uint32_t>(c.y1 - c.y0);
+        const auto wide = 0u - span(c.x1, c.x0);  // all ones or none
+        const auto tall = 0u - span(c.y1, c.y0);
         return std::array<std::uint32_t, 4>{b, spare ^ ((spare ^ (b + 1)) & wide),
                                             spare ^ ((spare ^ (b + width)) & tall),
                                             spare ^ ((spare ^ (b + width + 1)) & wide & tall)};
