@@ -446,10 +446,10 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
 
 void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::vector<Pair>& pairs, float dt) {
     // detail::resolvable from packed data: a trigger counts as immovable here.
-    std::vector<float> inverse_mass = inverse_masses(slots);
-    std::vector<float> pushable = inverse_mass;
-    for (std::size_t i = 0; i < slots.size(); ++i) {
-        if (slots[i].body.kind == BodyKind::trigger) pushable[i] = -1.0f;
+    std::vector<float> inverse_mass(slots.size()), pushable(slots.size());
+    for (std::size_t i = 0; i < slots.size(); ++i) {  // one pass over the bodies for both
+        inverse_mass[i] = detail::resolution_inverse_mass(slots[i].body);
+        pushable[i] = slots[i].body.kind == BodyKind::trigger ? -1.0f : inverse_mass[i];
     }
     const auto resolvable = [&](const Pair& p) {
         const float a = pushable[p.a];
