@@ -215,6 +215,33 @@ TEST(MakePolygon, SmallPolygonsFarFromTheOriginAccepted) {
     }
 }
 
+TEST(MakePolygon, ADenormalEdgeGetsItsTrueNormal) {
+    // Found by fuzzing: an edge 1.8e-41 px long has a squared length of 0 in float, so its
+    // normal fell back to (1, 0) and a cast through the polygon missed it. Distinct floats
+    // always differ, so the edge has a direction, and the polygon is plainly convex.
+    const std::vector<Vec2> pts{{4, 2}, {0, 0}, {0, -22.75f}, {1.7937e-41f, -22.75f}};
+    std::string error;
+    const auto p = make(pts, &error);
+    ASSERT_TRUE(p.has_value()) << error;
+    // Every normal is a unit vector with every other vertex strictly behind it (the shared
+    // expect_normalised divides by the edge's float length, which is 0 here).
+    const auto n = static_cast<std::size_t>(p->count());
+    for (std::size_t i = 0; i < n; ++i) {
+        EXPECT_TRUE(test::is_unit(p->normals()[i])) << "normal " << i;
+        for (std::size_t j = 0; j < n; ++j) {
+            if (j == i || j == (i + 1) % n) continue;
+            EXPECT_LT(dot(p->normals()[i], p->points()[j] - p->points()[i]), 0.0f) << "normal " << i;
+        }
+    }
+    // The short edge faces -y (it lies along y = -22.75, below everything else).
+    EXPECT_TRUE(std::any_of(p->normals().begin(), p->normals().begin() + p->count(),
+                            [](Vec2 u) { return u == Vec2{0.0f, -1.0f}; }));
+    // Enters through the edge y = x / 2 at t = 1/47.
+    const CastHit hit = cast(Vec2{1.5f, 1}, Vec2{1, -11}, *p);
+    EXPECT_TRUE(hit.hit);
+    EXPECT_NEAR(hit.t, 1.0f / 47.0f, 1e-6f);
+}
+
 TEST(ToPolygon, FromAabb) {
     const Polygon p = to_polygon(Aabb{{1, 2}, {5, 3}});
     EXPECT_EQ(p.count(), 4);

@@ -41,21 +41,27 @@ std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* e
         const Vec2 p0 = poly.points_[i];
         const Vec2 e0 = poly.points_[(i + 1) % n] - p0;
         const Vec2 e1 = poly.points_[(i + 2) % n] - poly.points_[(i + 1) % n];
-        // Relative test: a turn of less than ~1e-6 rad is collinear within float precision.
-        const float turn = cross(e0, e1);
         const int at = (area2 > 0.0f ? (i + 1) % n : n - 1 - (i + 1) % n);
-        if (std::fabs(turn) <= 1e-6f * length(e0) * length(e1))
+        if (!finite(e0) || !finite(e1))
+            return fail("polygon vertex " + std::to_string(at) + " is farther from a neighbour than a float can hold");
+        // The tests work on the edges' directions, not the edges: an edge may be as short as
+        // a denormal (distinct floats always differ), and its square would underflow to 0.
+        const Vec2 u0 = normalize_or(e0, Vec2{});
+        const Vec2 u1 = normalize_or(e1, Vec2{});
+        // The sine of the turn: less than ~1e-6 rad is collinear within float precision.
+        const float turn = cross(u0, u1);
+        if (std::fabs(turn) <= 1e-6f)
             return fail("polygon vertex " + std::to_string(at) + " is collinear with its neighbours");
         if (turn < 0.0f) return fail("polygon is not convex at vertex " + std::to_string(at));
         // Every vertex strictly inside this edge's half-plane: rejects self-intersecting stars,
         // whose turns all have the same sign but which wind around twice.
         for (int j = 0; j < n; ++j) {
             if (j == i || j == (i + 1) % n) continue;
-            if (!(cross(e0, poly.points_[j] - p0) > 0.0f))
+            if (!(cross(u0, poly.points_[j] - p0) > 0.0f))
                 return fail("polygon is not convex: it folds over itself at vertex " + std::to_string(at));
         }
-        // Outward normal of a positively turning polygon: (e.y, -e.x).
-        poly.normals_[i] = normalize_or(Vec2{e0.y, -e0.x}, Vec2{1.0f, 0.0f});
+        // Outward normal of a positively turning polygon: (e.y, -e.x), normalised.
+        poly.normals_[i] = Vec2{u0.y, -u0.x};
     }
     return poly;
 }

@@ -34,10 +34,26 @@ constexpr Vec2 min(Vec2 a, Vec2 b) { return {a.x < b.x ? a.x : b.x, a.y < b.y ? 
 constexpr Vec2 max(Vec2 a, Vec2 b) { return {a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y}; }
 inline bool is_finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
-// v / |v|, or `fallback` when v is zero or not finite (never NaN).
+namespace detail {
+// v / |v| for a finite, non-zero v whose squared length float cannot hold (a denormal edge
+// of a valid polygon, or a vector beyond ~1.8e19): scaled by a power of two first, which
+// moves only the exponent, so the direction is what it would be in exact arithmetic.
+inline Vec2 normalize_rescaled(Vec2 v, Vec2 fallback) {
+    if (!is_finite(v) || (v.x == 0.0f && v.y == 0.0f)) return fallback;
+    const int e = std::ilogb(std::fmax(std::fabs(v.x), std::fabs(v.y)));
+    const Vec2 s{std::scalbn(v.x, -e), std::scalbn(v.y, -e)};  // largest component in [1, 2)
+    const float len = length(s);
+    return {s.x / len, s.y / len};
+}
+}  // namespace detail
+
+// v / |v|, or `fallback` when v is zero or not finite (never NaN). Exact in direction for
+// every finite non-zero v, however short or long.
 inline Vec2 normalize_or(Vec2 v, Vec2 fallback) {
-    const float len = length(v);
-    if (!(len > 0.0f) || !std::isfinite(len)) return fallback;
+    const float len2 = dot(v, v);
+    // Outside the normal range the square lost bits (or overflowed): rare, so out of line.
+    if (!(len2 >= 0x1p-126f && len2 <= 0x1p127f)) [[unlikely]] return detail::normalize_rescaled(v, fallback);
+    const float len = std::sqrt(len2);
     return {v.x / len, v.y / len};
 }
 
