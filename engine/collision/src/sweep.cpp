@@ -191,11 +191,11 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
             int prev = -1, next = -1;
             for (int k = 1; k <= count && prev < 0; ++k) {
                 const int i = (vtx + count - k) % count;
-                if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) prev = i;
+                if (points[(i + 1) % count] != points[i]) prev = i;
             }
             for (int k = 0; k < count && next < 0; ++k) {
                 const int i = (vtx + k) % count;
-                if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) next = i;
+                if (points[(i + 1) % count] != points[i]) next = i;
             }
             if (prev < 0 || next < 0) return false;
             n_prev = normals[prev];
