@@ -40,17 +40,20 @@ const detail::Slot* World::Impl::find(EntityId id) const {
     return const_cast<World::Impl*>(this)->find(id);
 }
 
+namespace {
+// Whether the slot's turned collider is its collider at the body's angle. The angle's bits,
+// not its value: a turned collider is only ever reused for exactly the angle it was turned
+// by (and never for NaN).
+bool turned_current(const detail::Slot& s) {
+    return s.turned_valid && std::bit_cast<std::uint32_t>(s.turned_angle) == std::bit_cast<std::uint32_t>(s.body.angle);
+}
+}  // namespace
+
 Shape World::Impl::placed(std::uint32_t index) const { return placed_at(index, slots[index].body.position); }
 
 Shape World::Impl::placed_at(std::uint32_t index, Vec2 position) const {
     const detail::Slot& s = slots[index];
-    const EntityDesc& b = s.body;
-    // The angle's bits, not its value: a turned collider is only ever reused for exactly
-    // the angle it was turned by (and never for NaN).
-    if (s.turned_valid && std::bit_cast<std::uint32_t>(s.turned_angle) == std::bit_cast<std::uint32_t>(b.angle)) {
-        return Collider::at(s.turned, position);
-    }
-    return b.collider.placed(position, b.angle);
+    return turned_current(s) ? Collider::at(s.turned, position) : s.body.collider.placed(position, s.body.angle);
 }
 
 void World::Impl::turn(std::uint32_t index) {
@@ -73,10 +76,10 @@ const detail::Placement& World::Impl::placement(std::uint32_t index) {
     if (!placement_current(index)) {
         const detail::Slot& s = slots[index];
         const EntityDesc& b = s.body;
-        if (s.turned_valid && std::bit_cast<std::uint32_t>(s.turned_angle) == std::bit_cast<std::uint32_t>(b.angle)) {
+        if (turned_current(s)) {
             Collider::place(s.turned, b.position, p.shape);  // placed(index), built in place
         } else {
-            p.shape = placed(index);
+            p.shape = b.collider.placed(b.position, b.angle);
         }
         p.box = bounds(p.shape);
         p.position = b.position;
