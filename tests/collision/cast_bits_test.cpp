@@ -34,12 +34,18 @@ Vec2 pick_point(Rng& rng, const Polygon& p) {
     const Vec2 b = pts[rng.below(static_cast<std::uint32_t>(pts.size()))];
     const float odd[] = {kNan, kInf, -kInf, 3e38f, -3e38f, 1e-45f, 1e19f, 0.0f};
     switch (rng.below(8)) {
-        case 0: return a;
-        case 1: return a + 0.5f * (b - a);
-        case 2: return a + rng.uniform(-3.0f, 3.0f) * (b - a);  // along a chord or an edge
-        case 3: return {static_cast<float>(rng.below(21)) - 10.0f, static_cast<float>(rng.below(21)) - 10.0f};
-        case 4: return {odd[rng.below(8)], rng.uniform(-10.0f, 10.0f)};
-        default: return a + Vec2{rng.uniform(-8.0f, 8.0f), rng.uniform(-8.0f, 8.0f)};
+        case 0:
+            return a;
+        case 1:
+            return a + 0.5f * (b - a);
+        case 2:
+            return a + rng.uniform(-3.0f, 3.0f) * (b - a);  // along a chord or an edge
+        case 3:
+            return {static_cast<float>(rng.below(21)) - 10.0f, static_cast<float>(rng.below(21)) - 10.0f};
+        case 4:
+            return {odd[rng.below(8)], rng.uniform(-10.0f, 10.0f)};
+        default:
+            return a + Vec2{rng.uniform(-8.0f, 8.0f), rng.uniform(-8.0f, 8.0f)};
     }
 }
 
@@ -48,8 +54,12 @@ Vec2 pick_point(Rng& rng, const Polygon& p) {
 std::optional<Polygon> pick_polygon(Rng& rng) {
     std::vector<Vec2> pts;
     switch (rng.below(4)) {
-        case 0: pts = {{-2, -1}, {0, -2}, {2, -1}, {2, 1}, {0, 2}, {-2, 1}}; break;
-        case 1: pts = {{0, 0}, {3, 0}, {3, 2}, {0, 2}}; break;
+        case 0:
+            pts = {{-2, -1}, {0, -2}, {2, -1}, {2, 1}, {0, 2}, {-2, 1}};
+            break;
+        case 1:
+            pts = {{0, 0}, {3, 0}, {3, 2}, {0, 2}};
+            break;
         case 2:
             for (int i = 0; i < 16; ++i) {
                 const float a = 2.0f * test::kPi * static_cast<float>(i) / 16.0f;
@@ -86,11 +96,11 @@ TEST(CastPolygonBits, Avx2AndLoopAgree) {
             ++compared;
             hits += loop.hit;
             if (!same_bits(simd, loop)) {
-                ADD_FAILURE() << "polygon " << n << " of " << poly->count() << " vertices, from (" << from.x << ", "
-                              << from.y << ") to (" << to.x << ", " << to.y << "): AVX2 hit " << simd.hit << " t "
-                              << simd.t << " normal (" << simd.normal.x << ", " << simd.normal.y << "), loop hit "
-                              << loop.hit << " t " << loop.t << " normal (" << loop.normal.x << ", " << loop.normal.y
-                              << ")";
+                ADD_FAILURE() << "polygon " << n << " of " << poly->count() << " vertices, from (" << from.x
+                              << ", " << from.y << ") to (" << to.x << ", " << to.y << "): AVX2 hit "
+                              << simd.hit << " t " << simd.t << " normal (" << simd.normal.x << ", "
+                              << simd.normal.y << "), loop hit " << loop.hit << " t " << loop.t << " normal ("
+                              << loop.normal.x << ", " << loop.normal.y << ")";
                 break;
             }
         }

@@ -151,9 +151,9 @@ namespace {
 // misses it when from is outside. hit: some t in [0, 1] is inside every edge.
 struct EdgeClip {
     bool hit = false;
-    float t_enter = 0.0f;         // max(0, the entering edges' t)
-    Vec2 normal{};                // of the first edge giving t_enter > 0, else {0, 0}
-    float max_side = -INFINITY;   // the largest -num: how far from is outside its farthest edge
+    float t_enter = 0.0f;        // max(0, the entering edges' t)
+    Vec2 normal{};               // of the first edge giving t_enter > 0, else {0, 0}
+    float max_side = -INFINITY;  // the largest -num: how far from is outside its farthest edge
 };
 
 // The plain loop. Each t is divided and then compared (NaN, from inputs past the limits,
@@ -212,10 +212,10 @@ using detail::Float8;
 using detail::Int8;
 
 // The same for up to 8 edges, one to a lane of AVX2 (chosen at run time): one VDIVPS for every
-// t and no branch per edge, whose hit-or-miss a CPU cannot predict. Each lane does the loop's
-// arithmetic (no FMA, -ffp-contract=off); the loop's max and min become VMAXPS folds over
-// lanes holding only numbers (NaN and dead lanes replaced by the starting bound), and the
-// first edge reaching the max is the first lane equal to it.
+// t and no branch per edge (the loop's depend on the data, so they mispredict). Each lane does
+// the loop's arithmetic (no FMA, -ffp-contract=off); the loop's max and min become VMAXPS folds
+// over lanes holding only numbers (NaN and dead lanes get the starting bound), and the first
+// edge reaching the max is the first lane equal to it: the same bits as the loop.
 [[gnu::target("avx2"), gnu::always_inline]] inline EdgeClip clip_edges8(Vec2 from, Vec2 d, const Vec2* points,
                                                                         const Vec2* normals, int count) {
     Float8 nx, ny, px, py;
@@ -225,19 +225,20 @@ using detail::Int8;
     const Float8 den = nx * d.x + ny * d.y;
     const Float8 t = num / den;
     const Int8 live = Int8{0, 1, 2, 3, 4, 5, 6, 7} < count;
+    if (detail::lane_bits8(live & (den == 0.0f) & (num < 0.0f)) != 0) return {};  // parallel, outside
     const Float8 zero{}, one = zero + 1.0f, minus_inf = zero - INFINITY;
-    if (detail::lane_bits8(live & (den == 0.0f) & (num < 0.0f)) != 0) return {};
     const Int8 entering = live & (den < 0.0f) & (t > 0.0f);
+    const Int8 leaving = live & (den > 0.0f) & (t < 1.0f);
     const Float8 t_enter = detail::max8(entering ? t : zero);
-    // min(x) is -max(-x) (negation is exact).
-    const Float8 t_exit = -detail::max8(live & (den > 0.0f) & (t < 1.0f) ? -t : -one);
+    const Float8 t_exit = -detail::max8(leaving ? -t : -one);  // min(x) is -max(-x): negation is exact
     if (!(t_enter[0] <= t_exit[0])) return {};
     EdgeClip c;
     c.hit = true;
     c.t_enter = t_enter[0];
     if (c.t_enter > 0.0f) c.normal = normals[std::countr_zero(detail::lane_bits8(entering & (t == t_enter)))];
     const Float8 side = -num;
-    c.max_side = detail::max8(live & (side > minus_inf) ? side : minus_inf)[0];
+    const Int8 sides = live & (side > minus_inf);  // not NaN
+    c.max_side = detail::max8(sides ? side : minus_inf)[0];
     return c;
 }
 
