@@ -5,6 +5,7 @@
 // polygons by clipping against every edge's half-plane (Cyrus-Beck), segments by the
 // parametric crossing of 09-78, masks row band by row band.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <utility>
 
@@ -141,49 +142,121 @@ CastHit cast(Vec2 from, Vec2 to, const Obb& box) {
     return h;
 }
 
-CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
-    // Cyrus-Beck: the segment enters the convex polygon at the latest entering edge and
-    // leaves it at the earliest leaving edge. One pass also finds whether `from` is inside
-    // (on the inner side of every edge): then no edge can end the pass early, since entering
-    // edges give t <= 0 and leaving edges t >= 0.
-    // The motion is checked at the end, for a hit only: an invalid input is a miss and the
-    // arithmetic on any input is defined. The farthest edge is kept as a value (MAXSS, no
-    // branch on the data); which edge it is matters only for a start on the boundary.
-    if (!valid(poly)) return {};
-    const Vec2 d = to - from;
-    const Vec2* points = poly.points().data();
-    const Vec2* normals = poly.normals().data();
-    float max_side = -INFINITY;  // how far from is outside its farthest edge
-    float t_enter = 0.0f;
+namespace {
+
+// Cyrus-Beck's pass over a convex polygon's edges (09-103), for cast(Polygon): every edge's
+// half-plane, n.(x - p) <= 0, cuts the segment's parameter range [0, 1] at t = num / den with
+// num = n.(p - from) and den = n.d. The segment enters at the latest entering edge (den < 0)
+// and leaves at the earliest leaving one (den > 0); an edge it runs parallel to (den == 0)
+// misses it when from is outside. hit: some t in [0, 1] is inside every edge.
+struct EdgeClip {
+    bool hit = false;
+    float t_enter = 0.0f;        // max(0, the entering edges' t)
+    Vec2 normal{};               // of the first edge giving t_enter > 0, else {0, 0}
+    float max_side = -INFINITY;  // the largest -num: how far from is outside its farthest edge
+};
+
+// The plain loop. Each t is divided and then compared (NaN, from inputs past the limits,
+// moves nothing), so the answer is a max and a min over the edges in any order: the AVX2
+// version below finds the same bits lane by lane.
+EdgeClip clip_edges(Vec2 from, Vec2 d, const Vec2* points, const Vec2* normals, int count) {
+    EdgeClip c;
     float t_exit = 1.0f;
-    Vec2 normal{};
-    for (int i = 0; i < poly.count(); ++i) {
+    for (int i = 0; i < count; ++i) {
         const Vec2 n = normals[i];
         const float num = dot(n, points[i] - from);  // < 0: from is outside this edge
-        max_side = -num > max_side ? -num : max_side;
+        c.max_side = -num > c.max_side ? -num : c.max_side;
         const float den = dot(n, d);
         if (den == 0.0f) {
             if (num < 0.0f) return {};  // parallel to the edge, outside it
             continue;
         }
-        // t = num / den, divided only when it moves a bound (comparing num with the bound
-        // times den, whose sign is known, says whether it would).
+        const float t = num / den;
         if (den < 0.0f) {
-            if (num < t_enter * den) { t_enter = num / den; normal = n; }
-        } else if (num < t_exit * den) {
-            t_exit = num / den;
+            if (t > c.t_enter) { c.t_enter = t; c.normal = n; }
+        } else if (t < t_exit) {
+            t_exit = t;
         }
-        if (!(t_enter <= t_exit)) return {};
+        if (!(c.t_enter <= t_exit)) return {};  // later edges can only narrow the range
     }
-    if (!valid_motion(from, d)) return {};
-    if (max_side <= 0.0f) {
-        if (max_side < 0.0f) return starts_inside(from);
+    c.hit = true;
+    return c;
+}
+
+// The answer from the pass over the edges. The motion is checked here, for a hit only: an
+// invalid input is a miss and the arithmetic on any input is defined.
+[[gnu::always_inline]] inline CastHit polygon_hit(Vec2 from, Vec2 d, const Polygon& poly, const EdgeClip& c) {
+    if (!c.hit || !valid_motion(from, d)) return {};
+    if (c.max_side <= 0.0f) {  // from is inside every edge: entering edges gave t <= 0
+        if (c.max_side < 0.0f) return starts_inside(from);
         // On the boundary: the first edge it lies on gives the normal.
+        const Vec2* points = poly.points().data();
+        const Vec2* normals = poly.normals().data();
         int on = 0;
-        while (on + 1 < poly.count() && !(-dot(normals[on], points[on] - from) == max_side)) ++on;
+        while (on + 1 < poly.count() && !(-dot(normals[on], points[on] - from) == c.max_side)) ++on;
         return starts_inside(from, normals[on]);
     }
-    return hit_at(from, d, t_enter, normal);
+    return hit_at(from, d, c.t_enter, c.normal);
+}
+
+// The plain version, for polygons of more than 8 vertices and CPUs without AVX2 (not inlined:
+// the AVX2 path then needs no registers saved for it).
+[[gnu::noinline]] CastHit cast_polygon(Vec2 from, Vec2 to, const Polygon& poly) {
+    if (!valid(poly)) return {};
+    const Vec2 d = to - from;
+    return polygon_hit(from, d, poly, clip_edges(from, d, poly.points().data(), poly.normals().data(), poly.count()));
+}
+
+#ifdef JOSTLE_AVX2_PATHS
+using detail::Float8;
+using detail::Int8;
+
+// The same for up to 8 edges, one to a lane of AVX2 (chosen at run time): one VDIVPS for every
+// t and no branch per edge (the loop's depend on the data, so they mispredict). Each lane does
+// the loop's arithmetic (no FMA, -ffp-contract=off); the loop's max and min become VMAXPS folds
+// over lanes holding only numbers (NaN and dead lanes get the starting bound), and the first
+// edge reaching the max is the first lane equal to it: the same bits as the loop.
+[[gnu::target("avx2"), gnu::always_inline]] inline EdgeClip clip_edges8(Vec2 from, Vec2 d, const Vec2* points,
+                                                                        const Vec2* normals, int count) {
+    Float8 nx, ny, px, py;
+    detail::load_xy8(normals, nx, ny);  // reads 8 slots: a Polygon has 16
+    detail::load_xy8(points, px, py);
+    const Float8 num = nx * (px - from.x) + ny * (py - from.y);
+    const Float8 den = nx * d.x + ny * d.y;
+    const Float8 t = num / den;
+    const Int8 live = Int8{0, 1, 2, 3, 4, 5, 6, 7} < count;
+    if (detail::lane_bits8(live & (den == 0.0f) & (num < 0.0f)) != 0) return {};  // parallel, outside
+    const Float8 zero{}, one = zero + 1.0f, minus_inf = zero - INFINITY;
+    const Int8 entering = live & (den < 0.0f) & (t > 0.0f);
+    const Int8 leaving = live & (den > 0.0f) & (t < 1.0f);
+    const Float8 t_enter = detail::max8(entering ? t : zero);
+    const Float8 t_exit = -detail::max8(leaving ? -t : -one);  // min(x) is -max(-x): negation is exact
+    if (!(t_enter[0] <= t_exit[0])) return {};
+    EdgeClip c;
+    c.hit = true;
+    c.t_enter = t_enter[0];
+    if (c.t_enter > 0.0f) c.normal = normals[std::countr_zero(detail::lane_bits8(entering & (t == t_enter)))];
+    const Float8 side = -num;
+    const Int8 sides = live & (side > minus_inf);  // not NaN
+    c.max_side = detail::max8(sides ? side : minus_inf)[0];
+    return c;
+}
+
+// The whole cast in one AVX2 function (no call, no spilled registers between the two parts).
+[[gnu::target("avx2")]] CastHit cast_polygon8(Vec2 from, Vec2 to, const Polygon& poly) {
+    if (!valid(poly)) return {};
+    const Vec2 d = to - from;
+    return polygon_hit(from, d, poly, clip_edges8(from, d, poly.points().data(), poly.normals().data(), poly.count()));
+}
+#endif
+
+}  // namespace
+
+CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
+#ifdef JOSTLE_AVX2_PATHS
+    if (poly.count() <= 8 && detail::has_avx2()) return cast_polygon8(from, to, poly);
+#endif
+    return cast_polygon(from, to, poly);
 }
 
 CastHit cast(Vec2 from, Vec2 to, const Segment& seg) {
