@@ -65,8 +65,9 @@ inline bool is_moving_kind(BodyKind k) {  // kinematic, dynamic, trigger
     return k == BodyKind::kinematic || k == BodyKind::dynamic || k == BodyKind::trigger;
 }
 // Velocity as contacts see it: a static body's is zero whatever its velocity field holds.
+inline Vec2 contact_velocity(Vec2 velocity, bool is_static) { return is_static ? Vec2{} : velocity; }
 inline Vec2 contact_velocity(const EntityDesc& body) {
-    return body.kind == BodyKind::static_body ? Vec2{} : body.velocity;
+    return contact_velocity(body.velocity, body.kind == BodyKind::static_body);
 }
 // Layer bits, `ignore`, and the kinds that never meet (see the MANUAL).
 inline bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id) {
@@ -74,10 +75,15 @@ inline bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, En
     return !(a.ignore == b_id || b.ignore == a_id);
 }
 // Resolution moves one of them: no trigger, and at least one body with inverse mass > 0.
-inline bool resolvable(const EntityDesc& a, const EntityDesc& b) {
-    if (a.kind == BodyKind::trigger || b.kind == BodyKind::trigger) return false;
-    return resolution_inverse_mass(a) > 0.0f || resolution_inverse_mass(b) > 0.0f;
+// On packed data (resolve keeps one float a body): -1 for a trigger, else the resolution
+// inverse mass.
+inline float pushability(const EntityDesc& body) {
+    return body.kind == BodyKind::trigger ? -1.0f : resolution_inverse_mass(body);
 }
+inline bool resolvable(float pushability_a, float pushability_b) {
+    return pushability_a >= 0.0f && pushability_b >= 0.0f && (pushability_a > 0.0f || pushability_b > 0.0f);
+}
+inline bool resolvable(const EntityDesc& a, const EntityDesc& b) { return resolvable(pushability(a), pushability(b)); }
 
 }  // namespace detail
 

@@ -218,10 +218,10 @@ VelocityContact velocity_contact(std::uint32_t a, const EntityDesc& ba, std::uin
 struct Motion {
     Vec2 velocity;
     Vec2 friction_dv;
-    bool still = false;  // a static body: its contact velocity is zero (detail::contact_velocity)
+    bool still = false;  // a static body
 };
 
-Vec2 contact_velocity(const Motion& m) { return m.still ? Vec2{} : m.velocity; }
+Vec2 contact_velocity(const Motion& m) { return detail::contact_velocity(m.velocity, m.still); }
 
 void solve_velocity(std::vector<Motion>& motion, const std::vector<int>& level, VelocityContact& vc, bool shock) {
     const auto [ima, imb] = shock_masses(vc.ima, vc.imb, level[vc.a], level[vc.b], shock);
@@ -445,17 +445,13 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
 // ---------------------------------------------------------------------------------------
 
 void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::vector<Pair>& pairs, float dt) {
-    // detail::resolvable from packed data: a trigger counts as immovable here.
+    // detail::resolvable from packed data.
     std::vector<float> inverse_mass(slots.size()), pushable(slots.size());
     for (std::size_t i = 0; i < slots.size(); ++i) {  // one pass over the bodies for both
         inverse_mass[i] = detail::resolution_inverse_mass(slots[i].body);
-        pushable[i] = slots[i].body.kind == BodyKind::trigger ? -1.0f : inverse_mass[i];
+        pushable[i] = detail::pushability(slots[i].body);
     }
-    const auto resolvable = [&](const Pair& p) {
-        const float a = pushable[p.a];
-        const float b = pushable[p.b];
-        return a >= 0.0f && b >= 0.0f && (a > 0.0f || b > 0.0f);
-    };
+    const auto resolvable = [&](const Pair& p) { return detail::resolvable(pushable[p.a], pushable[p.b]); };
     std::vector<const NarrowContact*> contacts_in;
     for (const NarrowContact& c : found) {
         if (resolvable(c.pair)) contacts_in.push_back(&c);
