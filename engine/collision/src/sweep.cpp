@@ -186,16 +186,19 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
         // to the other; a point-sized box has none). Outside it, rounding let this vertex win
         // a tie: with the neighbour across a tiny face (a thin box's other corner), or with any
         // corner of a shape that float sees as a point, whose cone holds the direction; or
-        // with an adjacent face, whose exact normal it then takes.
+        // with an adjacent face, whose exact normal it then takes. "Non-zero length" is the
+        // squared length's, on purpose: a face whose square underflows belongs to a shape that
+        // float sees as a point, and counting it narrows the cone so that a ball passing over
+        // such a box misses it (regression sweep_circle_over_point_sized_box_tunnels.bin).
         auto cone_bounds = [&](int vtx, Vec2& n_prev, Vec2& n_next) {
             int prev = -1, next = -1;
             for (int k = 1; k <= count && prev < 0; ++k) {
                 const int i = (vtx + count - k) % count;
-                if (points[(i + 1) % count] != points[i]) prev = i;
+                if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) prev = i;
             }
             for (int k = 0; k < count && next < 0; ++k) {
                 const int i = (vtx + k) % count;
-                if (points[(i + 1) % count] != points[i]) next = i;
+                if (length_squared(points[(i + 1) % count] - points[i]) > 0.0f) next = i;
             }
             if (prev < 0 || next < 0) return false;
             n_prev = normals[prev];
