@@ -51,7 +51,8 @@ inline Vec2 normalize_rescaled(Vec2 v, Vec2 fallback) {
 // every finite non-zero v, however short or long.
 inline Vec2 normalize_or(Vec2 v, Vec2 fallback) {
     const float len2 = dot(v, v);
-    // Outside the normal range the square lost bits (or overflowed): rare, so out of line.
+    // Outside the normal range the square lost bits (or overflowed): rare, so kept in its own
+    // function, off the common path.
     if (!(len2 >= 0x1p-126f && len2 <= 0x1p127f)) [[unlikely]] return detail::normalize_rescaled(v, fallback);
     const float len = std::sqrt(len2);
     return {v.x / len, v.y / len};
