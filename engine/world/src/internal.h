@@ -69,10 +69,22 @@ inline Vec2 contact_velocity(Vec2 velocity, bool is_static) { return is_static ?
 inline Vec2 contact_velocity(const EntityDesc& body) {
     return contact_velocity(body.velocity, body.kind == BodyKind::static_body);
 }
-// Layer bits, `ignore`, and the kinds that never meet (see the MANUAL).
-inline bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id) {
+// What may_meet reads of a body, packed: the step filters tens of thousands of candidate
+// pairs a step, and a body's EntityDesc spans several cache lines.
+struct MeetKey {
+    EntityId id;
+    EntityId ignore;
+    std::uint32_t layer = 0;
+    std::uint32_t collides_with = 0;
+};
+inline MeetKey meet_key(const EntityDesc& body, EntityId id) { return {id, body.ignore, body.layer, body.collides_with}; }
+// Layer bits and `ignore` (see the MANUAL).
+inline bool may_meet(const MeetKey& a, const MeetKey& b) {
     if ((a.layer & b.collides_with) == 0 || (b.layer & a.collides_with) == 0) return false;
-    return !(a.ignore == b_id || b.ignore == a_id);
+    return !(a.ignore == b.id || b.ignore == a.id);
+}
+inline bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id) {
+    return may_meet(meet_key(a, a_id), meet_key(b, b_id));
 }
 // Resolution moves one of them: no trigger, and at least one body with inverse mass > 0.
 // On packed data (resolve keeps one float a body): -1 for a trigger, else the resolution
@@ -97,7 +109,12 @@ struct World::Impl {
     detail::PairGrid pair_grid;     // all candidate pairs at once, over the same fat bounds
     std::vector<detail::GridItem> grid_items;  // scratch of broadphase_pairs, kept to reuse
     std::vector<detail::GridPair> grid_pairs;
-    std::vector<Aabb> boxes;  // scratch of resolve: placement(i).box, packed
+    // Scratch of the step, one entry a slot, filled by broadphase_pairs for the later
+    // phases: packed copies of what their pair loops read (an EntityDesc spans several cache
+    // lines, and there are tens of thousands of pairs).
+    std::vector<Aabb> boxes;               // placement(i).box (live bodies with a proxy)
+    std::vector<float> pushable;           // detail::pushability(body)
+    std::vector<detail::MeetKey> meet_keys;  // detail::meet_key(body, id)
     std::vector<Contact> contacts;          // after the last step, sorted by (a, b)
     std::vector<Event> events;
     std::vector<SweptPath> paths;

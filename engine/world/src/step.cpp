@@ -139,23 +139,28 @@ std::vector<std::uint32_t> ground_up_order(const std::vector<int>& level, std::s
 }
 
 // An undirected edge list by body (compressed rows): the edges at body i are
-// edge[first[i] .. first[i + 1]), as indices into the list, in list order.
+// at[first[i] .. first[i + 1]), in list order, each with its other end (so a walk over a
+// body's edges does not go back to the list for it).
 struct EdgesByBody {
+    struct Entry {
+        std::uint32_t edge;   // index into the list
+        std::uint32_t other;  // the edge's other body (i itself for a self-edge)
+    };
     std::vector<std::uint32_t> first;
-    std::vector<std::uint32_t> edge;
+    std::vector<Entry> at;
 
     template <typename Edges>
-    EdgesByBody(std::size_t bodies, const Edges& edges) : first(bodies + 1, 0), edge(2 * edges.size()) {
+    EdgesByBody(std::size_t bodies, const Edges& edges) : first(bodies + 1, 0), at(2 * edges.size()) {
         for (const auto& [a, b] : edges) {
             ++first[a + 1];
             ++first[b + 1];
         }
         for (std::size_t i = 0; i < bodies; ++i) first[i + 1] += first[i];
-        std::vector<std::uint32_t> at(first.begin(), first.end() - 1);
+        std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
         for (std::uint32_t k = 0; k < edges.size(); ++k) {
             const auto& [a, b] = edges[k];
-            edge[at[a]++] = k;
-            edge[at[b]++] = k;
+            at[next[a]++] = {k, b};
+            at[next[b]++] = {k, a};
         }
     }
 };
@@ -180,8 +185,7 @@ std::vector<int> ground_levels(const std::vector<float>& inverse_mass, const Edg
     for (std::size_t head = 0; head < queue.size(); ++head) {
         const std::uint32_t i = queue[head];
         for (std::uint32_t e = by_body.first[i]; e < by_body.first[i + 1]; ++e) {
-            const auto& [a, b] = edges[by_body.edge[e]];
-            const std::uint32_t j = a == i ? b : a;
+            const std::uint32_t j = by_body.at[e].other;
             if (level[j] == kUnreached) {
                 level[j] = level[i] + 1;
                 queue.push_back(j);
@@ -348,9 +352,13 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
     // same pairs either way (tests/world/pair_grid_test.cpp).
     grid_items.clear();
     boxes.resize(slots.size());
+    pushable.resize(slots.size());
+    meet_keys.resize(slots.size());
     std::size_t moving = 0;
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         const Slot& s = slots[i];
+        pushable[i] = detail::pushability(s.body);
+        meet_keys[i] = detail::meet_key(s.body, id_of(i));
         if (!s.alive || s.proxy < 0 || s.body.kind == BodyKind::bullet) continue;
         const bool moves = detail::is_moving_kind(s.body.kind);
         grid_items.push_back({broadphase.fat_bounds(s.proxy), i, moves});
@@ -383,10 +391,8 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
     std::vector<Pair> pairs;
     pairs.reserve(grid_pairs.size());
     for (const detail::GridPair& g : grid_pairs) {
-        const EntityDesc& a = slots[g.a].body;
-        const EntityDesc& b = slots[g.b].body;
-        if (a.kind == BodyKind::trigger && b.kind == BodyKind::trigger) continue;
-        if (!detail::may_meet(a, id_of(g.a), b, id_of(g.b))) continue;
+        if (pushable[g.a] < 0.0f && pushable[g.b] < 0.0f) continue;  // two triggers
+        if (!detail::may_meet(meet_keys[g.a], meet_keys[g.b])) continue;
         pairs.push_back({g.a, g.b});
     }
     return pairs;
@@ -398,27 +404,31 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
 
 std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vector<Pair>& pairs) {
     std::vector<NarrowContact> found;
+    // The pairs come in (a, b) order, and so do the last step's contacts (ids order by index
+    // first), so one cursor walks the contacts once for all the pairs' look-ups.
+    const auto before = [](const Contact& c, EntityId a, EntityId b) { return c.a != a ? c.a < a : c.b < b; };
+    std::size_t last_at = 0;
     const auto last_step = [&](EntityId a, EntityId b) -> const Contact* {
-        const auto it = std::lower_bound(contacts.begin(), contacts.end(), std::pair{a, b},
-                                         [](const Contact& c, const std::pair<EntityId, EntityId>& k) {
-                                             return c.a != k.first ? c.a < k.first : c.b < k.second;
-                                         });
-        return (it != contacts.end() && it->a == a && it->b == b) ? &*it : nullptr;
+        if (last_at > 0 && !before(contacts[last_at - 1], a, b)) last_at = 0;  // out of order: start over
+        while (last_at < contacts.size() && before(contacts[last_at], a, b)) ++last_at;
+        return (last_at < contacts.size() && contacts[last_at].a == a && contacts[last_at].b == b) ? &contacts[last_at]
+                                                                                                    : nullptr;
     };
     for (const Pair& p : pairs) {
-        const EntityDesc& ba = slots[p.a].body;
-        const EntityDesc& bb = slots[p.b].body;
-        const bool trigger = ba.kind == BodyKind::trigger || bb.kind == BodyKind::trigger;
+        const bool trigger = pushable[p.a] < 0.0f || pushable[p.b] < 0.0f;
         // Bounds first: cheap, and for masks it is the lecture's first test (09-30). The
         // packed boxes turn most candidates away without reading their placements.
+        // The broadphase placed every body and nothing has moved since, so the placements
+        // are read directly (checking them against the bodies would be a cache miss each).
         Manifold m;
+        const detail::Placement& pa = placements[p.a];
+        const detail::Placement& pb = placements[p.b];
         if (touch(boxes[p.a], boxes[p.b])) {
-            const detail::Placement& pa = placement(p.a);
-            const detail::Placement& pb = placement(p.b);
+            JOSTLE_DEBUG_ASSERT(placement_current(p.a) && placement_current(p.b), "a stale placement in the narrowphase");
             if (overlaps(pa.box, pb.box)) m = collide(pa.shape, pb.shape);
         }
         if (m.hit) {
-            found.push_back({p, m, 0.0f, trigger, detail::corner_touch(placement(p.a).shape, placement(p.b).shape, m)});
+            found.push_back({p, m, 0.0f, trigger, detail::corner_touch(pa.shape, pb.shape, m)});
             continue;
         }
         // Bodies that touched last step and now miss by a rounding error (or a small gap)
@@ -426,12 +436,12 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
         // kSpeculative shows how far apart they are. Without this a resting stack loses a
         // contact whenever rounding opens a 1e-5 px gap, and the body above falls through
         // a step of gravity.
-        if (trigger || !detail::resolvable(ba, bb)) continue;
-        const Contact* last = last_step(id_of(p.a), id_of(p.b));
+        if (trigger || !detail::resolvable(pushable[p.a], pushable[p.b])) continue;
+        const Contact* last = last_step(meet_keys[p.a].id, meet_keys[p.b].id);
         if (last == nullptr) continue;
         constexpr float kSpeculative = 1.0f;  // px
-        const Shape b_back = placed_at(p.b, bb.position - kSpeculative * last->normal);
-        const Manifold back = collide(placement(p.a).shape, b_back);
+        const Shape b_back = placed_at(p.b, slots[p.b].body.position - kSpeculative * last->normal);
+        const Manifold back = collide(pa.shape, b_back);
         if (!back.hit) continue;
         Manifold touching = back;
         touching.depth = 0.0f;
@@ -445,12 +455,9 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
 // ---------------------------------------------------------------------------------------
 
 void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::vector<Pair>& pairs, float dt) {
-    // detail::resolvable from packed data.
-    std::vector<float> inverse_mass(slots.size()), pushable(slots.size());
-    for (std::size_t i = 0; i < slots.size(); ++i) {  // one pass over the bodies for both
-        inverse_mass[i] = detail::resolution_inverse_mass(slots[i].body);
-        pushable[i] = detail::pushability(slots[i].body);
-    }
+    // From the packed pushabilities (broadphase_pairs): a trigger's -1 is inverse mass 0.
+    std::vector<float> inverse_mass(slots.size());
+    for (std::size_t i = 0; i < slots.size(); ++i) inverse_mass[i] = std::fmax(pushable[i], 0.0f);
     const auto resolvable = [&](const Pair& p) { return detail::resolvable(pushable[p.a], pushable[p.b]); };
     std::vector<const NarrowContact*> contacts_in;
     for (const NarrowContact& c : found) {
@@ -531,10 +538,13 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     // Dirty marks as bits, one set in the order of the plain passes and one in ground-up order.
     const std::size_t words = (std::size_t{n_pairs} + 63) / 64;
     std::vector<std::uint64_t> dirty_in_order(words, 0), dirty_ground_up(words, 0);
-    const auto set_dirty = [&](std::uint32_t k) {
-        dirty_in_order[k / 64] |= std::uint64_t{1} << (k % 64);
+    // Sets pair k's marks when `on` (without a branch: whether a moved body's pair touches
+    // is a coin toss in a crowd).
+    const auto set_dirty = [&](std::uint32_t k, bool on = true) {
+        const std::uint64_t bit = on;
+        dirty_in_order[k / 64] |= bit << (k % 64);
         const std::uint32_t r = rank_ground_up[k];
-        dirty_ground_up[r / 64] |= std::uint64_t{1} << (r % 64);
+        dirty_ground_up[r / 64] |= bit << (r % 64);
     };
     // A body moved (boxes[i] already holds its new bounds): its pairs whose bounds now touch
     // become dirty. One whose bounds do not touch would be turned away when visited, unless
@@ -560,9 +570,10 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             all_now = all_next = true;
             return;
         }
+        const Aabb box = boxes[i];
         for (std::uint32_t e = pairs_of.first[i]; e < pairs_of.first[i + 1]; ++e) {
-            const std::uint32_t k = pairs_of.edge[e];
-            if (touch(boxes[push_pairs[k].a], boxes[push_pairs[k].b])) set_dirty(k);
+            const auto [k, j] = pairs_of.at[e];
+            set_dirty(k, touch(box, boxes[j]));  // touch is symmetric
         }
     };
     // The narrowphase already tested every pair at these positions: dirty are the pairs it
