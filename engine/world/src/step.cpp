@@ -404,12 +404,15 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
 
 std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vector<Pair>& pairs) {
     std::vector<NarrowContact> found;
-    // The pairs come in (a, b) order, and so do the last step's contacts (ids order by index
-    // first), so one cursor walks the contacts once for all the pairs' look-ups.
+    // The pairs come in (a, b) order (broadphase_pairs; resolve's merge with `found` relies
+    // on it too), and so do the last step's contacts (ids order by index first), so one
+    // cursor walks the contacts once for all the pairs' look-ups.
+    JOSTLE_DEBUG_ASSERT(std::is_sorted(pairs.begin(), pairs.end(),
+                                       [](const Pair& x, const Pair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; }),
+                        "candidate pairs out of (a, b) order");
     const auto before = [](const Contact& c, EntityId a, EntityId b) { return c.a != a ? c.a < a : c.b < b; };
     std::size_t last_at = 0;
     const auto last_step = [&](EntityId a, EntityId b) -> const Contact* {
-        if (last_at > 0 && !before(contacts[last_at - 1], a, b)) last_at = 0;  // out of order: start over
         while (last_at < contacts.size() && before(contacts[last_at], a, b)) ++last_at;
         return (last_at < contacts.size() && contacts[last_at].a == a && contacts[last_at].b == b) ? &contacts[last_at]
                                                                                                     : nullptr;
