@@ -1,4 +1,4 @@
-// The broadphase wrapper over b2DynamicTree (see broadphase.h).
+// The broadphase's fat bounds and the b2DynamicTree over them (see broadphase.h).
 #include "broadphase.h"
 
 #include <cmath>
@@ -7,7 +7,7 @@ namespace jostle::detail {
 
 namespace {
 // Fat bounds margin in pixels. Box2D's own b2_aabbExtension is 0.1 length units, tuned for
-// metres; in pixels a resting or slowly moving body would be re-inserted almost every step.
+// metres; in pixels a resting or slowly moving body would be re-fattened almost every step.
 constexpr float kMargin = 2.0f;
 // Tree bounds stay far inside float range so the tree's area heuristics stay finite.
 constexpr float kFar = 1e12f;
@@ -35,28 +35,74 @@ Aabb Broadphase::fatten(const Aabb& tight, Vec2 displacement) {
     if (displacement.x < 0.0f) fat.min.x -= stretch(displacement.x);
     if (displacement.y > 0.0f) fat.max.y += stretch(displacement.y);
     if (displacement.y < 0.0f) fat.min.y -= stretch(displacement.y);
+    // And b2_aabbExtension on every side, as the tree adds it to what it is given: the fat
+    // bounds were the tree's own boxes until the tree became a lazy index, and the candidate
+    // pairs (and so every recorded scenario) depend on them to the last bit.
+    fat.min.x -= b2_aabbExtension;
+    fat.min.y -= b2_aabbExtension;
+    fat.max.x += b2_aabbExtension;
+    fat.max.y += b2_aabbExtension;
     return fat;
 }
 
 int Broadphase::create(const Aabb& tight, std::uint32_t index) {
-    return tree_.CreateProxy(to_b2(fatten(tight, {})), reinterpret_cast<void*>(static_cast<std::uintptr_t>(index)));
-}
-
-void Broadphase::destroy(int proxy) { tree_.DestroyProxy(proxy); }
-
-void Broadphase::move(int proxy, const Aabb& tight, Vec2 displacement) {
-    const b2AABB& fat = tree_.GetFatAABB(proxy);
-    if (fat.lowerBound.x <= tight.min.x && fat.lowerBound.y <= tight.min.y && tight.max.x <= fat.upperBound.x &&
-        tight.max.y <= fat.upperBound.y) {
-        return;
+    int proxy;
+    if (free_.empty()) {
+        proxy = static_cast<int>(proxies_.size());
+        proxies_.emplace_back();
+    } else {
+        proxy = free_.back();
+        free_.pop_back();
     }
-    // MoveProxy re-inserts whenever the given box is not inside the tree's; ours never is.
-    tree_.MoveProxy(proxy, to_b2(fatten(tight, displacement)), b2Vec2(0.0f, 0.0f));
+    Proxy& p = proxies_[static_cast<std::size_t>(proxy)];
+    p.fat = fatten(tight, {});
+    p.index = index;
+    p.node = -1;
+    p.live = true;
+    enqueue(proxy);
+    return proxy;
 }
 
-Aabb Broadphase::fat_bounds(int proxy) const {
-    const b2AABB& fat = tree_.GetFatAABB(proxy);
-    return {{fat.lowerBound.x, fat.lowerBound.y}, {fat.upperBound.x, fat.upperBound.y}};
+void Broadphase::destroy(int proxy) {
+    Proxy& p = proxies_[static_cast<std::size_t>(proxy)];
+    if (p.node >= 0) tree_.DestroyProxy(p.node);
+    p.node = -1;
+    p.live = false;  // catch_up skips it if it is still queued
+    free_.push_back(proxy);
+}
+
+void Broadphase::refatten(int proxy, const Aabb& tight, Vec2 displacement) {
+    proxies_[static_cast<std::size_t>(proxy)].fat = fatten(tight, displacement);
+    enqueue(proxy);
+}
+
+void Broadphase::enqueue(int proxy) {
+    Proxy& p = proxies_[static_cast<std::size_t>(proxy)];
+    if (!p.queued) {
+        p.queued = true;
+        queued_.push_back(proxy);
+    }
+    behind_.store(true, std::memory_order_relaxed);  // changes never race with queries
+}
+
+void Broadphase::catch_up() const {
+    const std::lock_guard lock(catching_up_);
+    if (!behind_.load(std::memory_order_relaxed)) return;  // another query caught up first
+    for (const int proxy : queued_) {
+        const Proxy& p = proxies_[static_cast<std::size_t>(proxy)];
+        p.queued = false;
+        if (!p.live) continue;
+        void* user_data = reinterpret_cast<void*>(static_cast<std::uintptr_t>(proxy));
+        // The tree adds b2_aabbExtension around the box it is given, so its node contains
+        // the fat bounds: a query finds every proxy the fat bounds' own test accepts.
+        if (p.node < 0) {
+            p.node = tree_.CreateProxy(to_b2(p.fat), user_data);
+        } else {
+            tree_.MoveProxy(p.node, to_b2(p.fat), b2Vec2(0.0f, 0.0f));
+        }
+    }
+    queued_.clear();
+    behind_.store(false, std::memory_order_release);
 }
 
 }  // namespace jostle::detail
