@@ -2,6 +2,8 @@
 // Also the names of body kinds and event types.
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <variant>
 
 #include "jostle/world.h"
 
@@ -91,36 +93,51 @@ Shape Collider::turned(float angle) const {
     return std::visit(Turn{q, angle}, shape_);
 }
 
+namespace {
 // Translation only: rotate(q, v) + p is what apply(Transform{p, q}, v) computes, so the two
-// halves round exactly as one placement would.
+// halves round exactly as one placement would. Each alternative to its own type, so that
+// place() can write it into a Shape that already holds one (a Shape is as large as a
+// Polygon: building one per placement and copying it was most of placing a circle).
+struct Move {
+    Vec2 p;
+    Aabb operator()(const Aabb& b) const { return Aabb{b.min + p, b.max + p}; }
+    Obb operator()(Obb b) const {
+        b.center = b.center + p;
+        return b;
+    }
+    Circle operator()(const Circle& c) const { return Circle{c.center + p, c.radius}; }
+    Segment operator()(const Segment& s) const { return Segment{s.a + p, s.b + p}; }
+    Polygon operator()(const Polygon& poly) const { return poly.moved(p); }
+    PlacedMask operator()(const PlacedMask& m) const {
+        return PlacedMask{m.mask, add_offset(nearest_pixel(p.x), m.x), add_offset(nearest_pixel(p.y), m.y)};
+    }
+};
+}  // namespace
+
 Shape Collider::at(const Shape& turned, Vec2 position) {
     if (!is_finite(position)) return nowhere();
-    struct Move {
-        Vec2 p;
-        Shape operator()(const Aabb& b) const { return Aabb{b.min + p, b.max + p}; }
-        Shape operator()(Obb b) const {
-            b.center = b.center + p;
-            return b;
-        }
-        Shape operator()(const Circle& c) const { return Circle{c.center + p, c.radius}; }
-        Shape operator()(const Segment& s) const { return Segment{s.a + p, s.b + p}; }
-        Shape operator()(const Polygon& poly) const { return poly.moved(p); }
-        Shape operator()(const PlacedMask& m) const {
-            return PlacedMask{m.mask, add_offset(nearest_pixel(p.x), m.x), add_offset(nearest_pixel(p.y), m.y)};
-        }
-    };
-    return std::visit(Move{position}, turned);
+    return std::visit([&](const auto& t) -> Shape { return Move{position}(t); }, turned);
 }
 
 void Collider::place(const Shape& turned, Vec2 position, Shape& out) {
-    const auto* poly = std::get_if<Polygon>(&turned);
-    if (poly == nullptr || !is_finite(position)) {
-        out = at(turned, position);
+    if (!is_finite(position)) {
+        out = nowhere();
         return;
     }
-    auto* out_poly = std::get_if<Polygon>(&out);
-    if (out_poly == nullptr) out_poly = &out.emplace<Polygon>();
-    poly->moved_into(position, *out_poly);
+    std::visit(
+        [&](const auto& t) {
+            using T = std::decay_t<decltype(t)>;
+            T* o = std::get_if<T>(&out);
+            if constexpr (std::is_same_v<T, Polygon>) {
+                if (o == nullptr) o = &out.emplace<Polygon>();
+                t.moved_into(position, *o);
+            } else if (o != nullptr) {
+                *o = Move{position}(t);
+            } else {
+                out.emplace<T>(Move{position}(t));
+            }
+        },
+        turned);
 }
 
 const char* name_of(BodyKind k) {
