@@ -534,21 +534,17 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     const auto n_pairs = static_cast<std::uint32_t>(push_pairs.size());
     const std::vector<std::uint32_t> ground_up =
         ground_up_order(level, n_pairs, [&](std::size_t k) { return std::pair{push_pairs[k].a, push_pairs[k].b}; });
-    std::vector<std::uint32_t> rank_ground_up(n_pairs);
-    for (std::uint32_t r = 0; r < n_pairs; ++r) rank_ground_up[ground_up[r]] = r;
-    // Each body's pairs, to mark them when the body moves.
-    const EdgesByBody pairs_of(slots.size(), push_pairs);
-    // Dirty marks as bits, one set in the order of the plain passes and one in ground-up order.
+    // Each body's pairs, to mark them when the body moves: the entries name each pair by its
+    // position in the order the passes walk, pair order and then, from the first shock pass
+    // on, ground-up order (rewritten once, at the switch).
+    EdgesByBody pairs_of(slots.size(), push_pairs);
+    // Dirty marks as bits, by position in that order, converted at the switch too.
     const std::size_t words = (std::size_t{n_pairs} + 63) / 64;
-    std::vector<std::uint64_t> dirty_in_order(words, 0), dirty_ground_up(words, 0);
-    // Sets pair k's marks when `on` (without a branch: whether a moved body's pair touches
-    // is a coin toss in a crowd).
-    const auto set_dirty = [&](std::uint32_t k, bool on = true) {
-        const std::uint64_t bit = on;
-        dirty_in_order[k / 64] |= bit << (k % 64);
-        const std::uint32_t r = rank_ground_up[k];
-        dirty_ground_up[r / 64] |= bit << (r % 64);
-    };
+    std::vector<std::uint64_t> dirty(words, 0);
+    bool walk_ground_up = false;
+    // Sets the mark of the pair at position r when `on` (without a branch: whether a moved
+    // body's pair touches is a coin toss in a crowd).
+    const auto set_dirty = [&](std::uint32_t r, bool on = true) { dirty[r / 64] |= std::uint64_t{on} << (r % 64); };
     // A body moved (boxes[i] already holds its new bounds): its pairs whose bounds now touch
     // become dirty. One whose bounds do not touch would be turned away when visited, unless
     // one of its bodies moves again first, which marks it then: the same pushes as marking
@@ -575,8 +571,8 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         }
         const Aabb box = boxes[i];
         for (std::uint32_t e = pairs_of.first[i]; e < pairs_of.first[i + 1]; ++e) {
-            const auto [k, j] = pairs_of.at[e];
-            set_dirty(k, touch(box, boxes[j]));  // touch is symmetric
+            const auto [r, j] = pairs_of.at[e];
+            set_dirty(r, touch(box, boxes[j]));  // touch is symmetric
         }
     };
     // The narrowphase already tested every pair at these positions: dirty are the pairs it
@@ -597,9 +593,9 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     }
     // The next dirty position at or after `from` (marks ahead of the cursor are taken in this
     // pass, marks behind it in the next), or n_pairs.
-    const auto next_dirty = [&](const std::vector<std::uint64_t>& bits, std::uint32_t from) {
+    const auto next_dirty = [&](std::uint32_t from) {
         for (std::size_t w = from / 64; w < words; ++w) {
-            std::uint64_t word = bits[w];
+            std::uint64_t word = dirty[w];
             if (w == from / 64) word &= ~std::uint64_t{0} << (from % 64);
             if (word != 0) return static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(std::countr_zero(word)));
         }
@@ -608,17 +604,28 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     const int passes = std::max(desc.relaxation_passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         const bool shock = pass >= passes / 2;
-        const std::vector<std::uint64_t>& bits = shock ? dirty_ground_up : dirty_in_order;
+        if (shock && !walk_ground_up) {
+            // From here on the passes walk in ground-up order: the marks and the entries move
+            // to the pairs' positions in it.
+            walk_ground_up = true;
+            std::vector<std::uint32_t> rank(n_pairs);
+            for (std::uint32_t r = 0; r < n_pairs; ++r) rank[ground_up[r]] = r;
+            std::vector<std::uint64_t> by_rank(words, 0);
+            for (std::uint32_t k = next_dirty(0); k < n_pairs; k = next_dirty(k + 1)) {
+                by_rank[rank[k] / 64] |= std::uint64_t{1} << (rank[k] % 64);
+            }
+            dirty = std::move(by_rank);
+            for (EdgesByBody::Entry& e : pairs_of.at) e.edge = rank[e.edge];
+        }
         float deepest = 0.0f;
         // (Marks made before the first pass count toward it: a pile is found at once.)
         all_now = all_next;
         all_next = false;
         marks = 0;
-        const auto next = [&](std::uint32_t from) { return all_now ? from : next_dirty(bits, from); };
+        const auto next = [&](std::uint32_t from) { return all_now ? from : next_dirty(from); };
         for (std::uint32_t r = next(0); r < n_pairs; r = next(r + 1)) {
             const std::uint32_t k = shock ? ground_up[r] : r;
-            dirty_in_order[k / 64] &= ~(std::uint64_t{1} << (k % 64));
-            dirty_ground_up[rank_ground_up[k] / 64] &= ~(std::uint64_t{1} << (rank_ground_up[k] % 64));
+            dirty[r / 64] &= ~(std::uint64_t{1} << (r % 64));
             const Pair& p = push_pairs[k];
             if (!touch(boxes[p.a], boxes[p.b])) continue;
             // Every placement here is current: the broadphase placed every body, and each
@@ -650,7 +657,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             slots[p.a].body.position -= push_a;
             // This pair is looked at again next pass; the other pairs of a body only if the
             // push moved it (an immovable floor under a crowd keeps its many pairs clean).
-            set_dirty(k);
+            set_dirty(r);
             for (const auto& [i, before] : {std::pair{p.a, a_before}, std::pair{p.b, b_before}}) {
                 const Vec2 now = slots[i].body.position;
                 if (std::bit_cast<std::uint64_t>(now) == std::bit_cast<std::uint64_t>(before)) continue;
