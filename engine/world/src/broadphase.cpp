@@ -50,12 +50,13 @@ int Broadphase::create(const Aabb& tight, std::uint32_t index) {
     if (free_.empty()) {
         proxy = static_cast<int>(proxies_.size());
         proxies_.emplace_back();
+        fat_.push_back(kFree);
     } else {
         proxy = free_.back();
         free_.pop_back();
     }
     Proxy& p = proxies_[static_cast<std::size_t>(proxy)];
-    p.fat = fatten(tight, {});
+    fat_[static_cast<std::size_t>(proxy)] = fatten(tight, {});
     p.index = index;
     p.node = -1;
     p.live = true;
@@ -68,11 +69,12 @@ void Broadphase::destroy(int proxy) {
     if (p.node >= 0) tree_.DestroyProxy(p.node);
     p.node = -1;
     p.live = false;  // catch_up skips it if it is still queued
+    fat_[static_cast<std::size_t>(proxy)] = kFree;
     free_.push_back(proxy);
 }
 
 void Broadphase::refatten(int proxy, const Aabb& tight, Vec2 displacement) {
-    proxies_[static_cast<std::size_t>(proxy)].fat = fatten(tight, displacement);
+    fat_[static_cast<std::size_t>(proxy)] = fatten(tight, displacement);
     enqueue(proxy);
 }
 
@@ -85,9 +87,14 @@ void Broadphase::enqueue(int proxy) {
     behind_.store(true, std::memory_order_relaxed);  // changes never race with queries
 }
 
-void Broadphase::catch_up() const {
+bool Broadphase::catch_up_or_scan(bool may_scan) const {
     const std::lock_guard lock(catching_up_);
-    if (!behind_.load(std::memory_order_relaxed)) return;  // another query caught up first
+    if (!behind_.load(std::memory_order_relaxed)) return true;  // another query caught up first
+    const std::size_t live = proxies_.size() - free_.size();
+    if (may_scan && scanned_ + live <= scan_per_insert_ * queued_.size()) {
+        scanned_ += live;
+        return false;
+    }
     for (const int proxy : queued_) {
         const Proxy& p = proxies_[static_cast<std::size_t>(proxy)];
         p.queued = false;
@@ -96,13 +103,15 @@ void Broadphase::catch_up() const {
         // The tree adds b2_aabbExtension around the box it is given, so its node contains
         // the fat bounds: a query finds every proxy the fat bounds' own test accepts.
         if (p.node < 0) {
-            p.node = tree_.CreateProxy(to_b2(p.fat), user_data);
+            p.node = tree_.CreateProxy(to_b2(fat_[static_cast<std::size_t>(proxy)]), user_data);
         } else {
-            tree_.MoveProxy(p.node, to_b2(p.fat), b2Vec2(0.0f, 0.0f));
+            tree_.MoveProxy(p.node, to_b2(fat_[static_cast<std::size_t>(proxy)]), b2Vec2(0.0f, 0.0f));
         }
     }
     queued_.clear();
+    scanned_ = 0;
     behind_.store(false, std::memory_order_release);
+    return true;
 }
 
 }  // namespace jostle::detail

@@ -6,11 +6,17 @@
 // The fat bounds live in a flat array, the truth every caller reads; the tree is an index
 // over them that catches up only when a query needs it. A step moves thousands of bodies and
 // may query nothing (the candidate pairs come from the grid, pair_grid.h), so moving a proxy
-// is an array write, and the tree's re-insertions happen once per proxy per query round,
-// not at every move.
+// is an array write. And a step's few queries (the sweeps of its fast bodies) scan the array
+// rather than pay for re-inserting every proxy that moved since the last: a query scans
+// while the scans since the tree last caught up cost less than catching up would (about
+// kScanPerInsert box tests a re-insertion), then catches up, so neither a few queries
+// among many moves nor many queries among few moves pay much more than the better choice.
 #pragma once
 
 #include <atomic>
+#include <bit>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <mutex>
 #include <vector>
@@ -23,6 +29,12 @@ namespace jostle::detail {
 
 class Broadphase {
 public:
+    // Box tests a scanning query may spend per proxy waiting for the tree, before catching
+    // up is cheaper (a re-insertion descends and rebalances the tree: some hundreds of
+    // instructions and a cache miss a level). 0: never scan.
+    static constexpr std::size_t kScanPerInsert = 256;
+    explicit Broadphase(std::size_t scan_per_insert = kScanPerInsert) : scan_per_insert_(scan_per_insert) {}
+
     // Bounds beyond this (or not finite) get no proxy: such a collider meets nothing.
     static bool usable(const Aabb& tight);
 
@@ -31,31 +43,42 @@ public:
     // Keeps the proxy when `tight` is still inside its fat bounds; otherwise re-fattens it by
     // a margin, stretched along `displacement` (this step's motion).
     void move(int proxy, const Aabb& tight, Vec2 displacement) {
-        const Aabb& fat = proxies_[static_cast<std::size_t>(proxy)].fat;
+        const Aabb& fat = fat_[static_cast<std::size_t>(proxy)];
         if (fat.min.x <= tight.min.x && fat.min.y <= tight.min.y && tight.max.x <= fat.max.x &&
             tight.max.y <= fat.max.y) {
             return;
         }
         refatten(proxy, tight, displacement);
     }
-    Aabb fat_bounds(int proxy) const { return proxies_[static_cast<std::size_t>(proxy)].fat; }
+    Aabb fat_bounds(int proxy) const { return fat_[static_cast<std::size_t>(proxy)]; }
 
     // Calls f(index) for every proxy whose fat bounds overlap `box` (touching counts), in
     // no promised order: callers sort what they keep. Safe to call from several threads at
     // once (the tree's catching up is locked), not alongside the changes above.
     template <typename F>
     void query(const Aabb& box, F&& f) const {
-        if (behind_.load(std::memory_order_acquire)) catch_up();
+        if (behind_.load(std::memory_order_acquire) && !catch_up_or_scan(finite(box))) {
+            // The scan, 64 proxies at a time: their tests into a word of bits without a
+            // branch, then a call for each bit set. A free proxy's bounds are kFree, which no
+            // finite box touches.
+            const std::size_t n = fat_.size();
+            for (std::size_t base = 0; base < n; base += 64) {
+                const std::size_t count = n - base < 64 ? n - base : 64;
+                std::uint64_t hits = 0;
+                for (std::size_t i = 0; i < count; ++i) hits |= std::uint64_t{overlap(fat_[base + i], box)} << i;
+                for (; hits != 0; hits &= hits - 1) f(proxies_[base + static_cast<std::size_t>(std::countr_zero(hits))].index);
+            }
+            return;
+        }
         struct Callback {
             const Broadphase* self;
             const Aabb* box;
             F* f;
             bool QueryCallback(std::int32_t node) {
                 const auto proxy = reinterpret_cast<std::uintptr_t>(self->tree_.GetUserData(node));
-                const Proxy& p = self->proxies_[proxy];
                 // The tree's boxes are a little larger than the fat bounds (it adds its own
                 // margin): the answer is the fat bounds' own test, as b2TestOverlap writes it.
-                if (overlap(p.fat, *box)) (*f)(p.index);
+                if (overlap(self->fat_[proxy], *box)) (*f)(self->proxies_[proxy].index);
                 return true;
             }
         } callback{this, &box, &f};
@@ -63,8 +86,9 @@ public:
     }
 
 private:
-    struct Proxy {
-        Aabb fat;
+    // The bounds of a free proxy number: inside out, so that no finite box overlaps them.
+    static constexpr Aabb kFree{{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
+    struct Proxy {  // all but the fat bounds, which fat_ packs for the scans
         std::uint32_t index = 0;  // the caller's (the World's slot)
         bool live = false;
         // The tree's bookkeeping, which catch_up (under const queries) changes:
@@ -75,16 +99,26 @@ private:
         return !(b.min.x - a.max.x > 0.0f || b.min.y - a.max.y > 0.0f || a.min.x - b.max.x > 0.0f ||
                  a.min.y - b.max.y > 0.0f);
     }
+    static bool finite(const Aabb& box) {
+        return std::isfinite(box.min.x) && std::isfinite(box.min.y) && std::isfinite(box.max.x) &&
+               std::isfinite(box.max.y);
+    }
     static b2AABB to_b2(const Aabb& box);
     static Aabb fatten(const Aabb& tight, Vec2 displacement);
     void refatten(int proxy, const Aabb& tight, Vec2 displacement);
     void enqueue(int proxy);
-    void catch_up() const;  // re-inserts the queued proxies into the tree
+    // Under the lock: true when the tree is up to date (it caught up, here or in another
+    // query), false when this query should scan instead (counted as scanned; only when
+    // `may_scan`: the scan answers finite boxes).
+    bool catch_up_or_scan(bool may_scan) const;
 
+    std::vector<Aabb> fat_;  // by proxy number, kFree when free
     std::vector<Proxy> proxies_;
     std::vector<int> free_;  // proxy numbers to reuse, last-in first-out
+    std::size_t scan_per_insert_;
     // The tree and its backlog change under const queries (catch_up), behind the lock.
     mutable std::vector<int> queued_;
+    mutable std::size_t scanned_ = 0;  // proxies scanned since the tree last caught up
     mutable b2DynamicTree tree_;
     mutable std::atomic<bool> behind_{false};
     mutable std::mutex catching_up_;
