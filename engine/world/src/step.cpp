@@ -168,13 +168,15 @@ struct EdgesByBody {
 // Distance (in contacts) of each body from something immovable, for the ground-up order
 // (shock propagation): a breadth-first search from the immovable bodies over the contact
 // graph (the shortest distances, so the same levels as relaxing every edge until nothing
-// changes, in linear time). Deterministic: it depends only on the edges.
-template <typename Edges>
-std::vector<int> ground_levels(const std::vector<float>& inverse_mass, const Edges& edges) {
+// changes, in linear time). The sources are the immovable bodies of `seeds` (pairs, which
+// include the edges). Deterministic: the shortest distances depend only on the edges and the
+// set of sources, not on the order they are found in.
+template <typename Edges, typename Seeds>
+std::vector<int> ground_levels(const std::vector<float>& inverse_mass, const Edges& edges, const Seeds& seeds) {
     std::vector<int> level(inverse_mass.size(), kUnreached);
     const EdgesByBody by_body(inverse_mass.size(), edges);
     std::vector<std::uint32_t> queue;
-    for (const auto& [a, b] : edges) {
+    for (const auto& [a, b] : seeds) {
         for (std::uint32_t i : {a, b}) {
             if (level[i] != 0 && inverse_mass[i] == 0.0f) {
                 level[i] = 0;
@@ -313,7 +315,7 @@ void World::Impl::integrate(float dt) {
         edges.emplace_back(c.a.index, c.b.index);
     }
     if (!carried.empty()) {
-        solve_velocities(slots, ground_levels(inverse_masses(slots), edges), carried, desc.velocity_passes);
+        solve_velocities(slots, ground_levels(inverse_masses(slots), edges, edges), carried, desc.velocity_passes);
         for (Slot& s : slots) s.friction_dv = {};  // friction here acts before the motion
     }
 
@@ -474,14 +476,11 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
 
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
     for (const NarrowContact* c : contacts_in) edges.emplace_back(c->pair.a, c->pair.b);
-    // Pairs that only the pushes bring together still need their immovable bodies at level 0
-    // (both sides: an unseeded static body would look "above" the dynamic one and make it
-    // stand still under shock propagation). Self-edges seed a body without linking it.
-    for (const Pair& p : push_pairs) {
-        edges.emplace_back(p.a, p.a);
-        edges.emplace_back(p.b, p.b);
-    }
-    const std::vector<int> level = ground_levels(inverse_mass, edges);
+    // The sources are the immovable bodies of every push pair, not only of the contacts
+    // (whose pairs are among them): pairs that only the pushes bring together still need
+    // their immovable bodies at level 0 (both sides: an unseeded static body would look
+    // "above" the dynamic one and make it stand still under shock propagation).
+    const std::vector<int> level = ground_levels(inverse_mass, edges, push_pairs);
 
     // Velocity: new impacts (bounce above the threshold), kept contacts closing their gap.
     std::vector<VelocityContact> vcs;
