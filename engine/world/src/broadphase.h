@@ -19,8 +19,13 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <mutex>
 #include <vector>
+
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
 
 #include <box2d/b2_dynamic_tree.h>
 
@@ -31,12 +36,12 @@ namespace jostle::detail {
 class Broadphase {
 public:
     // Box tests a scanning query may spend per proxy waiting for the tree, before catching
-    // up is cheaper: a re-insertion descends and rebalances the tree (115-280 ns at 2,000 to
-    // 20,000 proxies with the tree in cache), a scan tests a box in 1.1-1.5 ns, so one
-    // re-insertion costs 100-180 box tests; twice that, as the tree is out of cache by the
-    // time a step queries it. (The world stress scene's 1,120 steps at 2,000 bodies, a few
-    // queries a step, run 6.63 G instructions with 128, 6.22 G with 256, 6.01 G with 512 and
-    // 5.91 G with 1,024; many queries a step would lose by larger values.) 0: never scan.
+    // up is cheaper: a re-insertion descends and rebalances the tree (110-175 ns at 2,000 to
+    // 20,000 proxies with the tree in cache), a scan tests a box in 0.9 ns, so one
+    // re-insertion costs 120-210 box tests, and more when the tree is out of cache, as it is
+    // by the time a step queries it. (The world stress scene's 1,120 steps at 2,000 bodies, a
+    // few queries a step, ran 6.63 G instructions with 128, 6.22 G with 256, 6.01 G with 512
+    // and 5.91 G with 1,024; many queries a step would lose by larger values.) 0: never scan.
     static constexpr std::size_t kScanPerInsert = 256;
     explicit Broadphase(std::size_t scan_per_insert = kScanPerInsert) : scan_per_insert_(scan_per_insert) {}
 
@@ -67,10 +72,11 @@ public:
             // branch, then a call for each bit set. A free proxy's bounds are kFree, which no
             // finite box touches.
             const std::size_t n = fat_.size();
+            const Lanes q = {box.min.x, box.min.y, box.max.x, box.max.y};
             for (std::size_t base = 0; base < n; base += 64) {
                 const std::size_t count = n - base < 64 ? n - base : 64;
                 std::uint64_t hits = 0;
-                for (std::size_t i = 0; i < count; ++i) hits |= std::uint64_t{overlap(fat_[base + i], box)} << i;
+                for (std::size_t i = 0; i < count; ++i) hits |= std::uint64_t{overlap_lanes(fat_[base + i], q)} << i;
                 for (; hits != 0; hits &= hits - 1) f(proxies_[base + static_cast<std::size_t>(std::countr_zero(hits))].index);
             }
             return;
@@ -103,6 +109,23 @@ private:
     static bool overlap(const Aabb& a, const Aabb& b) {
         return !(b.min.x - a.max.x > 0.0f || b.min.y - a.max.y > 0.0f || a.min.x - b.max.x > 0.0f ||
                  a.min.y - b.max.y > 0.0f);
+    }
+    // overlap(a, b) with b's four floats in lanes: the same four differences side by side
+    // (each lane the scalar subtraction), so that a scan runs without a branch a proxy.
+    using Lanes = float __attribute__((vector_size(16)));
+    using LaneBits = std::int32_t __attribute__((vector_size(16)));
+    static bool overlap_lanes(const Aabb& a, Lanes b) {
+        Lanes f;
+        static_assert(sizeof(Aabb) == sizeof(Lanes));
+        std::memcpy(&f, &a, sizeof f);
+        // {b.min.x - a.max.x, b.min.y - a.max.y, a.min.x - b.max.x, a.min.y - b.max.y} > 0
+        const LaneBits apart = __builtin_shufflevector(b, f, 0, 1, 4, 5) - __builtin_shufflevector(f, b, 2, 3, 6, 7) >
+                               Lanes{0.0f, 0.0f, 0.0f, 0.0f};
+#if defined(__SSE__)
+        return _mm_movemask_ps(reinterpret_cast<__m128>(apart)) == 0;
+#else
+        return ((apart[0] | apart[1]) | (apart[2] | apart[3])) == 0;
+#endif
     }
     static bool finite(const Aabb& box) {
         return std::isfinite(box.min.x) && std::isfinite(box.min.y) && std::isfinite(box.max.x) &&
