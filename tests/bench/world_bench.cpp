@@ -17,7 +17,8 @@
 //     brute_force     (anchor) every pair tested, O(n^2).
 //     tree            jostle's own broadphase, detail::Broadphase (engine/world/src/broadphase.h,
 //                     used directly: b2DynamicTree proxies with fattened bounds, re-inserted only
-//                     when a box leaves its fat bounds, as World::step does); one query per box
+//                     when a box leaves its fat bounds, as World::step does, the tree catching
+//                     up at the first query of a step and never scanning); one query per box
 //                     as World::step makes, but with the tight bounds and pairs kept when the
 //                     tight boxes overlap (the World keeps every fat-bounds overlap: a superset).
 //     sort_and_sweep  written here: boxes kept sorted by min x across steps (insertion sort,
@@ -183,7 +184,9 @@ void brute_force_pairs(const MovingBoxes& s, std::vector<PairKey>& out) {
 }
 
 // jostle's broadphase (b2DynamicTree behind detail::Broadphase), driven the way World::step
-// drives it: move() every box with this step's displacement, then one query per box.
+// drives it: move() every box with this step's displacement, then one query per box. The
+// queries always use the tree (scan budget 0): this variant measures the tree, not the
+// scans a query may make instead while the tree waits.
 class TreePairs {
 public:
     explicit TreePairs(const MovingBoxes& s) {
@@ -206,7 +209,7 @@ public:
     }
 
 private:
-    detail::Broadphase tree_;
+    detail::Broadphase tree_{0};
     std::vector<int> proxies_;
 };
 
@@ -278,9 +281,10 @@ private:
     std::vector<detail::GridPair> found_;
 };
 
-// What World::step pays for its pairs: the tree's proxies kept up to date (moved as in
-// TreePairs; the tree answers the world's region queries), then the grid over their fat
-// bounds, then the pairs whose tight boxes touch (the world keeps every fat-bounds pair).
+// What World::step pays for its pairs: the proxies' fat bounds kept up to date (moved as in
+// TreePairs; the tree over them, which answers region queries, catches up only when queried,
+// and nothing here queries it), then the grid over the fat bounds, then the pairs whose
+// tight boxes touch (the world keeps every fat-bounds pair).
 class WorldPairs {
 public:
     explicit WorldPairs(const MovingBoxes& s) {

@@ -2,7 +2,7 @@
 // calls the collision module and resolves every overlap by pushing along the MTD, bullets
 // and fast circles moved continuously, contact events, queries and a state hash.
 // Depends on jostle/core, jostle/collision and (inside, never in this header) Box2D's
-// b2DynamicTree, which keeps every collider's fat bounds for region queries.
+// b2DynamicTree, an index over every collider's fat bounds for region queries.
 //
 // ===================================== MANUAL =====================================
 //
@@ -39,12 +39,12 @@
 //                (dynamic, kinematic, trigger); angles += w * dt, wrapped to [-pi, pi].
 //                A dynamic circle moving more than half its radius this step is "fast": it
 //                is not moved here but swept in the sweeps phase.
-//   broadphase   tight bounds of every moved collider; b2DynamicTree proxies (fattened) are
-//                re-inserted only when the bounds leave them; the candidate pairs are every
-//                pair whose fat bounds overlap, at least one of them moving, found all at
-//                once by a uniform grid over those bounds (faster than one tree query per
-//                body; the tree answers the sweeps' and World queries' regions), sorted by
-//                (lower id, higher id).
+//   broadphase   tight bounds of every moved collider; fat bounds (fattened) are re-made
+//                only when the bounds leave them; the candidate pairs are every pair whose
+//                fat bounds overlap, at least one of them moving, found all at once by a
+//                uniform grid over those bounds (faster than one tree query per body; a
+//                b2DynamicTree over the fat bounds answers the sweeps' and World queries'
+//                regions, catching up only when queried), sorted by (lower id, higher id).
 //   narrowphase  collide(A, B) from the collision module for each candidate (A is the lower
 //                id); mask pairs test bounds first, then pixels over the overlap, then the
 //                integer mask MTD. A pair in contact last step that now misses (a rounding
