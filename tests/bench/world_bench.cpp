@@ -283,8 +283,9 @@ private:
 
 // What World::step pays for its pairs: the proxies' fat bounds kept up to date (moved as in
 // TreePairs; the tree over them, which answers region queries, catches up only when queried,
-// and nothing here queries it), then the grid over the fat bounds, then the pairs whose
-// tight boxes touch (the world keeps every fat-bounds pair).
+// and nothing here queries it: the best case, as a real step with long walls, bullets or
+// fast circles queries), then the grid over the fat bounds, then the pairs whose tight boxes
+// touch (the world keeps every fat-bounds pair).
 class WorldPairs {
 public:
     explicit WorldPairs(const MovingBoxes& s) {

@@ -60,7 +60,12 @@ int Broadphase::create(const Aabb& tight, std::uint32_t index) {
     p.index = index;
     p.node = -1;
     p.live = true;
-    enqueue(proxy);
+    if (p.queued) {
+        ++queued_live_;  // a number destroyed while queued: in queued_ already, live again
+        behind_.store(true, std::memory_order_relaxed);
+    } else {
+        enqueue(proxy);
+    }
     return proxy;
 }
 
@@ -69,6 +74,7 @@ void Broadphase::destroy(int proxy) {
     if (p.node >= 0) tree_.DestroyProxy(p.node);
     p.node = -1;
     p.live = false;  // catch_up skips it if it is still queued
+    if (p.queued) --queued_live_;
     fat_[static_cast<std::size_t>(proxy)] = kFree;
     free_.push_back(proxy);
 }
@@ -83,6 +89,7 @@ void Broadphase::enqueue(int proxy) {
     if (!p.queued) {
         p.queued = true;
         queued_.push_back(proxy);
+        ++queued_live_;
     }
     behind_.store(true, std::memory_order_relaxed);  // changes never race with queries
 }
@@ -90,18 +97,25 @@ void Broadphase::enqueue(int proxy) {
 bool Broadphase::catch_up_or_scan(bool may_scan) const {
     const std::lock_guard lock(catching_up_);
     if (!behind_.load(std::memory_order_relaxed)) return true;  // another query caught up first
-    const std::size_t live = proxies_.size() - free_.size();
-    if (may_scan && scanned_ + live <= scan_per_insert_ * queued_.size()) {
-        scanned_ += live;
+    // A scan walks every proxy number, free ones too; catching up costs a re-insertion for
+    // each queued proxy still live (a destroyed one left the tree at once).
+    const std::size_t scan = fat_.size();
+    if (may_scan && scan_per_insert_ > 0 && scanned_ + scan <= scan_per_insert_ * queued_live_) {
+        scanned_ += scan;
+        ++counts_.scans;
         return false;
     }
+    ++counts_.catch_ups;
     for (const int proxy : queued_) {
         const Proxy& p = proxies_[static_cast<std::size_t>(proxy)];
         p.queued = false;
         if (!p.live) continue;
         void* user_data = reinterpret_cast<void*>(static_cast<std::uintptr_t>(proxy));
-        // The tree adds b2_aabbExtension around the box it is given, so its node contains
-        // the fat bounds: a query finds every proxy the fat bounds' own test accepts.
+        // The node contains the fat bounds, so a query finds every proxy the fat bounds' own
+        // test accepts: the tree makes the node the given box plus b2_aabbExtension, or keeps
+        // the node it has when that still contains the given box (MoveProxy returns early
+        // when the node holds the box and is not much larger: say a rod turned tall and back
+        // between two queries).
         if (p.node < 0) {
             p.node = tree_.CreateProxy(to_b2(fat_[static_cast<std::size_t>(proxy)]), user_data);
         } else {
@@ -109,6 +123,7 @@ bool Broadphase::catch_up_or_scan(bool may_scan) const {
         }
     }
     queued_.clear();
+    queued_live_ = 0;
     scanned_ = 0;
     behind_.store(false, std::memory_order_release);
     return true;

@@ -62,6 +62,14 @@ public:
     }
     Aabb fat_bounds(int proxy) const { return fat_[static_cast<std::size_t>(proxy)]; }
 
+    // How the queries that found the tree behind went: scanned, or caught it up (for tests;
+    // read while no query runs).
+    struct Counts {
+        std::size_t scans = 0;
+        std::size_t catch_ups = 0;
+    };
+    Counts counts() const { return counts_; }
+
     // Calls f(index) for every proxy whose fat bounds overlap `box` (touching counts), in
     // no promised order: callers sort what they keep. Safe to call from several threads at
     // once (the tree's catching up is locked), not alongside the changes above.
@@ -146,7 +154,9 @@ private:
     std::size_t scan_per_insert_;
     // The tree and its backlog change under const queries (catch_up), behind the lock.
     mutable std::vector<int> queued_;
-    mutable std::size_t scanned_ = 0;  // proxies scanned since the tree last caught up
+    mutable std::size_t queued_live_ = 0;  // of queued_, those still live (what catching up costs)
+    mutable std::size_t scanned_ = 0;  // proxy numbers scanned since the tree last caught up
+    mutable Counts counts_;
     mutable b2DynamicTree tree_;
     mutable std::atomic<bool> behind_{false};
     mutable std::mutex catching_up_;

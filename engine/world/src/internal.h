@@ -105,7 +105,7 @@ struct World::Impl {
     std::vector<detail::Placement> placements;  // one per slot
     std::vector<std::uint32_t> free_slots;  // reused last-in first-out
     std::size_t live = 0;
-    detail::Broadphase broadphase;  // fat bounds in a tree: region queries (sweeps, World queries)
+    detail::Broadphase broadphase;  // fat bounds, with a lazy tree for region queries (sweeps, World queries)
     detail::PairGrid pair_grid;     // all candidate pairs at once, over the same fat bounds
     std::vector<detail::GridItem> grid_items;  // scratch of broadphase_pairs, kept to reuse
     std::vector<detail::GridPair> grid_pairs;

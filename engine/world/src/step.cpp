@@ -344,7 +344,7 @@ void World::Impl::integrate(float dt) {
 }
 
 // ---------------------------------------------------------------------------------------
-// broadphase: candidate pairs from the tree, filtered, in (lower id, higher id) order
+// broadphase: candidate pairs from the grid (or tree queries), filtered, in (lower id, higher id) order
 // ---------------------------------------------------------------------------------------
 
 std::vector<Pair> World::Impl::broadphase_pairs() {
