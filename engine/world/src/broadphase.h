@@ -80,7 +80,7 @@ public:
             // branch, then a call for each bit set. A free proxy's bounds are kFree, which no
             // finite box touches.
             const std::size_t n = fat_.size();
-            const Lanes q = {box.min.x, box.min.y, box.max.x, box.max.y};
+            const Lanes q = lanes(box);
             for (std::size_t base = 0; base < n; base += 64) {
                 const std::size_t count = n - base < 64 ? n - base : 64;
                 std::uint64_t hits = 0;
@@ -91,16 +91,16 @@ public:
         }
         struct Callback {
             const Broadphase* self;
-            const Aabb* box;
+            Lanes box;
             F* f;
             bool QueryCallback(std::int32_t node) {
                 const auto proxy = reinterpret_cast<std::uintptr_t>(self->tree_.GetUserData(node));
                 // The tree's boxes are a little larger than the fat bounds (it adds its own
                 // margin): the answer is the fat bounds' own test, as b2TestOverlap writes it.
-                if (overlap(self->fat_[proxy], *box)) (*f)(self->proxies_[proxy].index);
+                if (overlap_lanes(self->fat_[proxy], box)) (*f)(self->proxies_[proxy].index);
                 return true;
             }
-        } callback{this, &box, &f};
+        } callback{this, lanes(box), &f};
         tree_.Query(&callback, to_b2(box));
     }
 
@@ -114,13 +114,12 @@ private:
         mutable bool queued = false;      // in queued_: the tree's node is behind `fat`
         mutable std::int32_t node = -1;   // in the tree; -1 before it first catches up
     };
-    static bool overlap(const Aabb& a, const Aabb& b) {
-        return !(b.min.x - a.max.x > 0.0f || b.min.y - a.max.y > 0.0f || a.min.x - b.max.x > 0.0f ||
-                 a.min.y - b.max.y > 0.0f);
-    }
-    // overlap(a, b) with b's four floats in lanes: the same four differences side by side
-    // (each lane the scalar subtraction), so that a scan runs without a branch a proxy.
+    // Whether a and b overlap (touching counts) as b2TestOverlap decides it: none of
+    // b.min - a.max and a.min - b.max is > 0 on either axis (a NaN difference is not, so a
+    // NaN box meets everything). The four differences side by side, each lane the scalar
+    // subtraction, b given in lanes: a scan runs without a branch a proxy.
     using Lanes = float __attribute__((vector_size(16)));
+    static Lanes lanes(const Aabb& box) { return Lanes{box.min.x, box.min.y, box.max.x, box.max.y}; }
     using LaneBits = std::int32_t __attribute__((vector_size(16)));
     static bool overlap_lanes(const Aabb& a, Lanes b) {
         Lanes f;

@@ -540,7 +540,6 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     // Dirty marks as bits, by position in that order, converted at the switch too.
     const std::size_t words = (std::size_t{n_pairs} + 63) / 64;
     std::vector<std::uint64_t> dirty(words, 0);
-    bool walk_ground_up = false;
     // Sets the mark of the pair at position r when `on` (without a branch: whether a moved
     // body's pair touches is a coin toss in a crowd).
     const auto set_dirty = [&](std::uint32_t r, bool on = true) { dirty[r / 64] |= std::uint64_t{on} << (r % 64); };
@@ -603,10 +602,9 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     const int passes = std::max(desc.relaxation_passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         const bool shock = pass >= passes / 2;
-        if (shock && !walk_ground_up) {
-            // From here on the passes walk in ground-up order: the marks and the entries move
-            // to the pairs' positions in it.
-            walk_ground_up = true;
+        if (pass == passes / 2) {
+            // The first shock pass: from here on the passes walk in ground-up order, so the
+            // marks and the entries move to the pairs' positions in it.
             std::vector<std::uint32_t> rank(n_pairs);
             for (std::uint32_t r = 0; r < n_pairs; ++r) rank[ground_up[r]] = r;
             std::vector<std::uint64_t> by_rank(words, 0);
