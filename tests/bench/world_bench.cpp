@@ -485,8 +485,11 @@ float area_of(const StressBody& b) {
     return 1.0f;
 }
 
+// A body at rest against a wall may overlap it by up to the slop (a segment lying along it
+// has its position on the wall's face), so leaving means going further than that.
 bool outside_arena(Vec2 p) {
-    return !is_finite(p) || p.x < 0.0f || p.x > kArena.x || p.y < 0.0f || p.y > kArena.y;
+    constexpr float kSlop = WorldDesc{}.slop;
+    return !is_finite(p) || p.x < -kSlop || p.x > kArena.x + kSlop || p.y < -kSlop || p.y > kArena.y + kSlop;
 }
 
 // The four walls, as (centre, half size), just outside the arena.

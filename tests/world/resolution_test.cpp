@@ -709,54 +709,54 @@ TEST(ResolutionNan, a_nan_position_collides_with_nothing_and_is_still_hashed) {
 namespace jostle {
 namespace {
 
-// A pile: bodies of every kind dropped onto a few points above a floor, so that nearly every
-// pair is a contact in the first steps.
-std::vector<std::uint64_t> pile_hashes(int ticks) {
-    WorldDesc wd;
-    wd.gravity = {0, 980};
-    World w(wd);
-    EntityDesc floor;
-    floor.position = {400, 600};
-    floor.collider = Collider::aabb({400, 10});
-    w.create(floor);
-    const std::vector<Vec2> quad{{-6, -4}, {7, -3}, {5, 6}, {-4, 5}};
-    const Polygon poly = *make_polygon(quad);
-    for (int i = 0; i < 240; ++i) {
-        EntityDesc b;
-        b.kind = BodyKind::dynamic;
-        b.position = {300.0f + 100.0f * static_cast<float>(i % 3), 400.0f};  // three piles
-        b.angle = 0.1f * static_cast<float>(i % 7);
-        b.angular_velocity = i % 2 == 0 ? 1.0f : -0.5f;
-        switch (i % 4) {
-            case 0: b.collider = Collider::circle(6); break;
-            case 1: b.collider = Collider::box({5, 4}); break;
-            case 2: b.collider = Collider::polygon(poly); break;
-            default: b.collider = Collider::aabb({4, 6}); break;
+// The position passes push along the narrowphase's contacts; a pair a push brings together
+// joins them in the same step.
+
+// The deepest overlap among the world's bodies (collide() of the placed colliders).
+float deepest_overlap(const World& w, const std::vector<EntityId>& ids) {
+    float deepest = 0.0f;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        for (std::size_t j = i + 1; j < ids.size(); ++j) {
+            const EntityDesc& a = *w.get(ids[i]);
+            const EntityDesc& b = *w.get(ids[j]);
+            const Manifold m = collide(a.collider.placed(a.position, a.angle), b.collider.placed(b.position, b.angle));
+            if (m.hit) deepest = std::fmax(deepest, m.depth);
         }
-        b.inverse_mass = i % 5 == 0 ? 0.5f : 1.0f;
-        w.create(b);
     }
-    std::vector<std::uint64_t> hashes;
-    for (int t = 0; t < ticks; ++t) {
-        w.step(kDt);
-        hashes.push_back(w.state_hash());
-    }
-    return hashes;
+    return deepest;
 }
 
-// The relaxation passes mark a moved body's pairs one by one, or (in a pile, when that would
-// cost more) visit every pair: visiting a clean pair pushes nothing, so the results must be
-// the same bit for bit whichever the passes do and whenever they switch.
-TEST(Resolution, VisitingEveryPairInAPileGivesTheSamePushesAsMarking) {
-    const std::size_t by_default = detail::set_marks_per_pair_before_visiting_all(SIZE_MAX);  // never switch
-    const std::vector<std::uint64_t> marking = pile_hashes(40);
-    detail::set_marks_per_pair_before_visiting_all(0);  // switch at the first mark
-    const std::vector<std::uint64_t> visiting = pile_hashes(40);
-    detail::set_marks_per_pair_before_visiting_all(by_default);
-    const std::vector<std::uint64_t> mixed = pile_hashes(40);  // the default switches in the first steps
-    EXPECT_EQ(by_default, 2u);
-    EXPECT_EQ(visiting, marking);
-    EXPECT_EQ(mixed, marking);
+EntityDesc still_box(Vec2 at, BodyKind kind = BodyKind::dynamic) {
+    return {.kind = kind, .position = at, .collider = Collider::aabb({5.0f, 5.0f}), .gravity_scale = 0.0f};
+}
+
+// A pushes B (A deep in B) into C, 0.5 px beyond B at the narrowphase: B-C was no contact then,
+// and is settled within the slop by the end of the step.
+TEST(ResolutionPasses, a_pair_a_push_brings_together_is_settled_in_the_same_step) {
+    World w;
+    const EntityId a = w.create(still_box({0.0f, 0.0f}));
+    const EntityId b = w.create(still_box({6.0f, 0.0f}));  // 4 px into A
+    const EntityId c = w.create(still_box({16.5f, 0.0f}));  // 0.5 px beyond B
+    w.step(kDt);
+    EXPECT_LE(deepest_overlap(w, {a, b, c}), WorldDesc{}.slop);
+    // C was pushed: B went right by 2 px (half of A's 4), into C by 1.5 px.
+    EXPECT_GT(w.get(c)->position.x, 16.5f + 0.5f);
+}
+
+// With one pass, a crowd of pushes is left unsettled, but not inside a wall: B, pushed by A
+// into a static wall it did not touch at the narrowphase, ends outside it.
+TEST(ResolutionPasses, contacts_with_something_immovable_have_the_last_word) {
+    World w(WorldDesc{.relaxation_passes = 1});
+    const EntityId wall = w.create(still_box({17.0f, 0.0f}, BodyKind::static_body));  // left face at 12
+    const EntityId a = w.create(still_box({0.0f, 0.0f}));
+    const EntityId b = w.create(still_box({6.0f, 0.0f}));  // 4 px into A, 1 px from the wall: pushed 1 px into it
+    w.step(kDt);
+    const EntityDesc& eb = *w.get(b);
+    const Manifold m = collide(w.get(wall)->collider.placed(w.get(wall)->position, 0.0f), eb.collider.placed(eb.position, 0.0f));
+    EXPECT_TRUE(!m.hit || m.depth <= WorldDesc{}.slop) << "B is " << m.depth << " px inside the wall";
+    EXPECT_LE(w.get(b)->position.x, 7.0f + WorldDesc{}.slop);
+    EXPECT_EQ(w.get(wall)->position.x, 17.0f);
+    EXPECT_LT(w.get(a)->position.x, 0.0f);
 }
 
 }  // namespace

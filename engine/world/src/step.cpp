@@ -41,8 +41,6 @@ float mixed_restitution(const EntityDesc& a, const EntityDesc& b) {
     return std::isfinite(e) && e > 0.0f ? e : 0.0f;
 }
 
-std::size_t g_marks_per_pair = 2;  // detail::set_marks_per_pair_before_visiting_all
-
 // Resets the flag even when the event handler throws.
 struct StepGuard {
     bool& flag;
@@ -51,10 +49,6 @@ struct StepGuard {
 };
 
 }  // namespace
-
-std::size_t detail::set_marks_per_pair_before_visiting_all(std::size_t n) {
-    return std::exchange(g_marks_per_pair, n);
-}
 
 void World::step(float dt) {
     Impl& w = *impl_;
@@ -354,11 +348,13 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
     // same pairs either way (tests/world/pair_grid_test.cpp).
     grid_items.clear();
     boxes.resize(slots.size());
+    positions.resize(slots.size());
     pushable.resize(slots.size());
     meet_keys.resize(slots.size());
     std::size_t moving = 0;
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         const Slot& s = slots[i];
+        positions[i] = s.body.position;
         pushable[i] = detail::pushability(s.body);
         meet_keys[i] = detail::meet_key(s.body, id_of(i));
         if (!s.alive || s.proxy < 0 || s.body.kind == BodyKind::bullet) continue;
@@ -506,171 +502,241 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
 
     // What friction took from the tangential velocity is taken from this step's motion too
     // (semi-implicit Euler), so a body that friction stops does not slide on for a step.
-    std::vector<bool> friction_moved(slots.size(), false);
+    // `positions` (packed by broadphase_pairs: the narrowphase's positions) becomes the
+    // passes' working copy; `moved_by` is each body's displacement since the narrowphase.
+    std::vector<Vec2> moved_by(slots.size());
+    std::vector<std::uint8_t> moved(slots.size(), 0);
     for (const NarrowContact* c : contacts_in) {
         for (std::uint32_t i : {c->pair.a, c->pair.b}) {
             Slot& s = slots[i];
             if (s.fast || (s.friction_dv.x == 0.0f && s.friction_dv.y == 0.0f)) continue;
+            const Vec2 before = s.body.position;
             s.body.position += dt * s.friction_dv;
             s.friction_dv = {};  // once per body
-            friction_moved[i] = true;
+            positions[i] = s.body.position;
+            moved_by[i] = s.body.position - before;
+            moved[i] = 1;
         }
     }
+    relax_positions(found, push_pairs, inverse_mass, level, moved_by, moved);
+}
 
-    // Position: relaxation passes along the MTD, recomputed from the current positions, over
-    // every candidate pair (a push can make a new overlap). A pair that pushed nothing when
-    // last looked at, and neither of whose bodies has moved since, would push nothing again
-    // (its manifold depends only on the two positions, and shock propagation only ever sets
-    // a mass to zero), so each pass looks only at the pairs marked dirty: those that pushed
-    // last time, and those with a body that moved since they were looked at. Same pushes in
-    // the same order as testing every pair every pass, without re-testing the many that do
-    // not touch.
+// ---------------------------------------------------------------------------------------
+// resolve, position: relaxation passes along the contacts' MTD normals
+// ---------------------------------------------------------------------------------------
+
+namespace {
+
+// A contact as the position passes see it. A pass only translates bodies, and a convex
+// shape's extent along a fixed axis moves with it, so the overlap along the narrowphase's
+// normal n is exactly offset - dot(db - da, n), where da and db are the bodies'
+// displacements since the narrowphase: no shape test per visit. (Displacements, not
+// positions: they are small, so the difference keeps the precision of the overlap.)
+// That overlap bounds the MTD depth from above (the MTD is the smallest overlap over all
+// axes), so a contact settled along n is settled. Contacts with a circle are tested again at
+// each visit instead: a circle's normal turns as it moves around a corner or another circle,
+// and moving a circle is cheap (the circle is kept in the contact, the other shape stays
+// where it was placed). Mask MTDs are whole pixels: mask contacts are placed and tested again.
+enum class PassKind : std::uint8_t { along_normal, circle_a, circle_b, circles, mask };
+
+struct PassContact {
+    std::uint32_t a = 0, b = 0;
+    Vec2 normal;
+    float offset = 0.0f;            // the overlap when found + dot(db - da, n) then
+    float share_a = 0.0f, share_b = 0.0f;  // of a push: ima / (ima + imb), imb / (ima + imb)
+    float shock_a = 0.0f, shock_b = 0.0f;  // the same under shock propagation
+    PassKind kind = PassKind::along_normal;
+    Circle circle_a, circle_b;  // circle kinds: the circles, centres relative to their bodies
+};
+
+PassKind pass_kind(const Shape& a, const Shape& b) {
+    const bool ca = std::holds_alternative<Circle>(a), cb = std::holds_alternative<Circle>(b);
+    if (std::holds_alternative<PlacedMask>(a) || std::holds_alternative<PlacedMask>(b)) return PassKind::mask;
+    if (ca && cb) return PassKind::circles;
+    if (cb) return PassKind::circle_b;
+    if (ca) return PassKind::circle_a;
+    return PassKind::along_normal;
+}
+
+// Each body's share of a push, 0 when neither moves (k = 0, or a NaN mass).
+std::pair<float, float> push_shares(float ima, float imb) {
+    const float k = ima + imb;
+    if (!(k > 0.0f)) return {0.0f, 0.0f};
+    return {ima / k, imb / k};
+}
+
+// Translated bounds, grown by `margin`: a superset of the bounds the shape would have if it
+// were placed again at its new position (placing rounds each vertex once).
+bool touch_moved(const Aabb& a, Vec2 da, const Aabb& b, Vec2 db, float margin) {
+    const Vec2 d = db - da;  // b relative to a
+    return (a.max.x + margin >= b.min.x + d.x) & (a.min.x - margin <= b.max.x + d.x) &
+           (a.max.y + margin >= b.min.y + d.y) & (a.min.y - margin <= b.max.y + d.y);
+}
+
+}  // namespace
+
+void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const std::vector<Pair>& push_pairs,
+                                  const std::vector<float>& inverse_mass, const std::vector<int>& level,
+                                  std::vector<Vec2>& moved_by, std::vector<std::uint8_t>& moved) {
     // A contact no deeper than half the slop is settled and not pushed: in a crowd most
     // pushes are that small, each moves bodies that then disturb their neighbours, and the
     // passes stop anyway once every contact is within it (Box2D likewise leaves the last
     // linear slop uncorrected). Resting contacts so end within the slop, as documented.
     const float settled = std::fmax(0.5f * desc.slop, 0.0f);
-    const auto n_pairs = static_cast<std::uint32_t>(push_pairs.size());
-    const std::vector<std::uint32_t> ground_up =
-        ground_up_order(level, n_pairs, [&](std::size_t k) { return std::pair{push_pairs[k].a, push_pairs[k].b}; });
-    // Each body's pairs, to mark them when the body moves: the entries name each pair by its
-    // position in the order the passes walk, pair order and then, from the first shock pass
-    // on, ground-up order (rewritten once, at the switch).
-    EdgesByBody pairs_of(slots.size(), push_pairs);
-    // Dirty marks as bits, by position in that order, converted at the switch too.
-    const std::size_t words = (std::size_t{n_pairs} + 63) / 64;
-    std::vector<std::uint64_t> dirty(words, 0);
-    // Sets the mark of the pair at position r when `on` (without a branch: whether a moved
-    // body's pair touches is a coin toss in a crowd).
-    const auto set_dirty = [&](std::uint32_t r, bool on = true) { dirty[r / 64] |= std::uint64_t{on} << (r % 64); };
-    // A body moved (boxes[i] already holds its new bounds): its pairs whose bounds now touch
-    // become dirty. One whose bounds do not touch would be turned away when visited, unless
-    // one of its bodies moves again first, which marks it then: the same pushes as marking
-    // every pair of the body, without setting and visiting the many that are apart.
-    // In a pile every body has a pair with every other, and marking them one move at a time
-    // costs pushes x pairs per body. Visiting a clean pair pushes nothing (see above), so
-    // treating every pair as dirty is always allowed: once a pass's marks outnumber twice
-    // its pairs (g_marks_per_pair), the rest of the pass and all of the next visit every
-    // pair instead (a pass then costs at most a few times its pairs; same pushes, same order).
-    std::vector<bool> moved(slots.size(), false);
-    bool all_now = false;   // this pass visits every pair from its cursor on
-    bool all_next = false;  // the next pass visits every pair
-    std::size_t marks = 0;  // this pass's so far
-    const std::size_t mark_budget = g_marks_per_pair == 0                            ? 0
-                                    : g_marks_per_pair > SIZE_MAX / (n_pairs + 65u) ? SIZE_MAX
-                                                                                     : g_marks_per_pair * n_pairs + 64;
-    const auto body_moved = [&](std::uint32_t i) {
-        moved[i] = true;
-        if (all_now && all_next) return;  // every mark would be redundant
-        marks += pairs_of.first[i + 1] - pairs_of.first[i];
-        if (marks > mark_budget) {
-            all_now = all_next = true;
-            return;
-        }
-        const Aabb box = boxes[i];
-        for (std::uint32_t e = pairs_of.first[i]; e < pairs_of.first[i + 1]; ++e) {
-            const auto [r, j] = pairs_of.at[e];
-            set_dirty(r, touch(box, boxes[j]));  // touch is symmetric
-        }
+    std::vector<PassContact> pcs;
+    pcs.reserve(found.size());
+    // A contact with overlap `overlap` along n when B had moved `since` more than A.
+    const auto add = [&](std::uint32_t a, std::uint32_t b, Vec2 n, float overlap, Vec2 since) {
+        PassContact c{a, b, n, overlap + dot(since, n)};
+        std::tie(c.share_a, c.share_b) = push_shares(inverse_mass[a], inverse_mass[b]);
+        const auto [ia, ib] = shock_masses(inverse_mass[a], inverse_mass[b], level[a], level[b], true);
+        std::tie(c.shock_a, c.shock_b) = push_shares(ia, ib);
+        const detail::Placement& pa = placements[a];
+        const detail::Placement& pb = placements[b];
+        c.kind = pass_kind(pa.shape, pb.shape);
+        // (A placement's shape is at its position: the offset is exact for nearby floats.)
+        if (const Circle* circle = std::get_if<Circle>(&pa.shape)) c.circle_a = {circle->center - pa.position, circle->radius};
+        if (const Circle* circle = std::get_if<Circle>(&pb.shape)) c.circle_b = {circle->center - pb.position, circle->radius};
+        pcs.push_back(c);
     };
-    // The narrowphase already tested every pair at these positions: dirty are the pairs it
-    // found overlapping, and those of bodies friction moved.
-    for (std::size_t k = 0, f = 0; k < n_pairs; ++k) {
+    // The narrowphase's contacts (hits, and kept contacts a gap apart: negative overlap) are
+    // the passes' contacts; corner-to-corner touches have no true normal and wait with the
+    // other candidate pairs (`apart`) until a push brings them into each other.
+    std::vector<std::uint8_t> apart(push_pairs.size(), 1);
+    std::vector<std::uint32_t> grounded;  // the apart pairs with an immovable body
+    for (std::size_t k = 0, f = 0; k < push_pairs.size(); ++k) {
         const Pair& p = push_pairs[k];
         while (f < found.size() && (found[f].pair.a < p.a || (found[f].pair.a == p.a && found[f].pair.b < p.b))) ++f;
-        if (f < found.size() && found[f].pair.a == p.a && found[f].pair.b == p.b && found[f].manifold.depth > settled) {
-            set_dirty(static_cast<std::uint32_t>(k));
+        if (f == found.size() || found[f].pair.a != p.a || found[f].pair.b != p.b || found[f].corner) {
+            if (!(inverse_mass[p.a] > 0.0f && inverse_mass[p.b] > 0.0f)) grounded.push_back(static_cast<std::uint32_t>(k));
+            continue;
         }
+        const NarrowContact& c = found[f];
+        const float overlap = c.separation > 0.0f ? -c.separation : c.manifold.depth;
+        // (At the narrowphase's positions: friction may have moved the bodies since.)
+        add(p.a, p.b, c.manifold.normal, overlap, {});
+        apart[k] = 0;
     }
-    // `boxes` (each body's bounds, packed, from broadphase_pairs) turns away the candidates
-    // that do not touch without reaching the placements; friction moved some bodies since.
-    for (std::uint32_t i = 0; i < slots.size(); ++i) {
-        if (!friction_moved[i]) continue;
-        boxes[i] = placement(i).box;
-        body_moved(i);
-    }
-    // The next dirty position at or after `from` (marks ahead of the cursor are taken in this
-    // pass, marks behind it in the next), or n_pairs.
-    const auto next_dirty = [&](std::uint32_t from) {
-        for (std::size_t w = from / 64; w < words; ++w) {
-            std::uint64_t word = dirty[w];
-            if (w == from / 64) word &= ~std::uint64_t{0} << (from % 64);
-            if (word != 0) return static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(std::countr_zero(word)));
+    std::vector<std::uint32_t> ground_up;
+    const auto order = [&] {
+        ground_up = ground_up_order(level, pcs.size(), [&](std::size_t k) { return std::pair{pcs[k].a, pcs[k].b}; });
+    };
+    order();
+    // The slot's position and placement brought up to the working copy (for shape tests).
+    const auto placed_now = [&](std::uint32_t i) -> const detail::Placement& {
+        slots[i].body.position = positions[i];
+        return placement(i);
+    };
+    // Pushes can bring candidate pairs that were apart into each other: those with a body
+    // that moved and bounds that now touch are tested again, and the overlapping ones join
+    // the passes. Returns how many joined.
+    constexpr float kBoundsMargin = 1.0f / 64.0f;  // px: rounding of placement, up to |x| = 1e5
+    const auto join = [&](std::uint32_t k) {
+        if (!apart[k]) return false;
+        const Pair& p = push_pairs[k];
+        if (!(moved[p.a] | moved[p.b])) return false;
+        if (!touch_moved(boxes[p.a], moved_by[p.a], boxes[p.b], moved_by[p.b], kBoundsMargin)) return false;
+        const detail::Placement& pa = placed_now(p.a);
+        const detail::Placement& pb = placed_now(p.b);
+        if (!overlaps(pa.box, pb.box)) return false;
+        const Manifold m = collide(pa.shape, pb.shape);
+        if (!m.hit || !(m.depth > settled)) return false;
+        add(p.a, p.b, m.normal, m.depth, moved_by[p.b] - moved_by[p.a]);
+        apart[k] = 0;
+        return true;
+    };
+    // Every apart pair, or only those with an immovable body (`grounded`).
+    const auto join_new = [&](bool grounded_only) {
+        std::size_t joined = 0;
+        if (grounded_only) {
+            for (const std::uint32_t k : grounded) joined += join(k) ? 1 : 0;
+        } else {
+            for (std::uint32_t k = 0; k < push_pairs.size(); ++k) joined += join(k) ? 1 : 0;
         }
-        return n_pairs;
+        if (joined > 0) order();
+        return joined;
+    };
+    // The manifold of a circle or mask contact at the bodies' positions now. A circle is
+    // placed at its body's position (as placing would) and moved back by the other body's
+    // displacement since the other's placement, which stays where it is: the same manifold
+    // as placing both again, up to the rounding of one small difference.
+    const auto collide_now = [&](const PassContact& c) {
+        const auto at = [&](const Circle& local, std::uint32_t body, Vec2 shift = {}) {
+            return Circle{(positions[body] + local.center) + shift, local.radius};
+        };
+        switch (c.kind) {
+            case PassKind::circles: return collide(at(c.circle_a, c.a), at(c.circle_b, c.b));
+            case PassKind::circle_b: {
+                const detail::Placement& pa = placements[c.a];
+                return collide(pa.shape, Shape{at(c.circle_b, c.b, pa.position - positions[c.a])});
+            }
+            case PassKind::circle_a: {
+                const detail::Placement& pb = placements[c.b];
+                return collide(Shape{at(c.circle_a, c.a, pb.position - positions[c.b])}, pb.shape);
+            }
+            default: return collide(placed_now(c.a).shape, placed_now(c.b).shape);
+        }
+    };
+    // One visit: the contact's overlap now, and if deeper than settled, the push along its
+    // normal, split by the shares. Returns the overlap (0 when not pushed).
+    const auto visit = [&](const PassContact& c, bool shock) {
+        const float wa = shock ? c.shock_a : c.share_a;
+        const float wb = shock ? c.shock_b : c.share_b;
+        if (!(wa + wb > 0.0f)) return 0.0f;
+        float depth = 0.0f;
+        Vec2 normal = c.normal;
+        if (c.kind == PassKind::along_normal) {
+            depth = c.offset - dot(moved_by[c.b] - moved_by[c.a], c.normal);
+        } else {
+            const Manifold m = collide_now(c);
+            if (!m.hit) return 0.0f;
+            depth = m.depth;
+            normal = m.normal;
+        }
+        if (!(depth > settled)) return 0.0f;
+        const Vec2 mtd = depth * normal;  // moves B out of A
+        Vec2 push_a = wa * mtd;
+        Vec2 push_b = wb * mtd;
+        if (c.kind == PassKind::mask) {
+            // Mask MTDs are whole pixels, and so is each body's share of one.
+            const auto whole = [](Vec2 v) { return Vec2{std::floor(v.x + 0.5f), std::floor(v.y + 0.5f)}; };
+            push_a = whole(push_a);
+            push_b = whole(mtd) - push_a;
+        }
+        positions[c.a] -= push_a;
+        positions[c.b] += push_b;
+        moved_by[c.a] -= push_a;
+        moved_by[c.b] += push_b;
+        moved[c.a] |= static_cast<std::uint8_t>(wa > 0.0f);
+        moved[c.b] |= static_cast<std::uint8_t>(wb > 0.0f);
+        return depth;
     };
     const int passes = std::max(desc.relaxation_passes, 1);
-    for (int pass = 0; pass < passes; ++pass) {
+    bool settled_all = false;
+    for (int pass = 0; pass < passes && !settled_all; ++pass) {
         const bool shock = pass >= passes / 2;
-        if (pass == passes / 2) {
-            // The first shock pass: from here on the passes walk in ground-up order, so the
-            // marks and the entries move to the pairs' positions in it.
-            std::vector<std::uint32_t> rank(n_pairs);
-            for (std::uint32_t r = 0; r < n_pairs; ++r) rank[ground_up[r]] = r;
-            std::vector<std::uint64_t> by_rank(words, 0);
-            for (std::uint32_t k = next_dirty(0); k < n_pairs; k = next_dirty(k + 1)) {
-                by_rank[rank[k] / 64] |= std::uint64_t{1} << (rank[k] % 64);
-            }
-            dirty = std::move(by_rank);
-            for (EdgesByBody::Entry& e : pairs_of.at) e.edge = rank[e.edge];
-        }
+        // Before the shock passes every new overlap joins, and before each of them those with
+        // something immovable; whenever the passes settle, every new overlap again.
+        if (shock) join_new(/*grounded_only=*/pass > passes / 2);
         float deepest = 0.0f;
-        // (Marks made before the first pass count toward it: a pile is found at once.)
-        all_now = all_next;
-        all_next = false;
-        marks = 0;
-        const auto next = [&](std::uint32_t from) { return all_now ? from : next_dirty(from); };
-        for (std::uint32_t r = next(0); r < n_pairs; r = next(r + 1)) {
-            const std::uint32_t k = shock ? ground_up[r] : r;
-            dirty[r / 64] &= ~(std::uint64_t{1} << (r % 64));
-            const Pair& p = push_pairs[k];
-            if (!touch(boxes[p.a], boxes[p.b])) continue;
-            // Every placement here is current: the broadphase placed every body, and each
-            // push or friction move above re-placed its bodies at once (so no need to check
-            // them against the bodies' positions, a cache miss each).
-            const detail::Placement& pa = placements[p.a];
-            const detail::Placement& pb = placements[p.b];
-            JOSTLE_DEBUG_ASSERT(placement_current(p.a) && placement_current(p.b), "a stale placement in resolve");
-            if (!overlaps(pa.box, pb.box)) continue;
-            const Shape& a = pa.shape;
-            const Shape& b = pb.shape;
-            const Manifold m = collide(a, b);
-            if (!m.hit || !(m.depth > settled)) continue;
-            const auto [ima, imb] = shock_masses(inverse_mass[p.a], inverse_mass[p.b], level[p.a], level[p.b], shock);
-            const float k_sum = ima + imb;
-            if (!(k_sum > 0.0f)) continue;  // under shock propagation only a mass can drop to 0
-            const Vec2 mtd = m.depth * m.normal;  // moves B out of A
-            const Vec2 a_before = slots[p.a].body.position;
-            const Vec2 b_before = slots[p.b].body.position;
-            Vec2 push_a = (ima / k_sum) * mtd;
-            if (std::holds_alternative<PlacedMask>(a) || std::holds_alternative<PlacedMask>(b)) {
-                // Mask MTDs are whole pixels, and so is each body's share of one.
-                const auto whole = [](Vec2 v) { return Vec2{std::floor(v.x + 0.5f), std::floor(v.y + 0.5f)}; };
-                push_a = whole(push_a);
-                slots[p.b].body.position += whole(mtd) - push_a;
-            } else {
-                slots[p.b].body.position += (imb / k_sum) * mtd;
-            }
-            slots[p.a].body.position -= push_a;
-            // This pair is looked at again next pass; the other pairs of a body only if the
-            // push moved it (an immovable floor under a crowd keeps its many pairs clean).
-            set_dirty(r);
-            for (const auto& [i, before] : {std::pair{p.a, a_before}, std::pair{p.b, b_before}}) {
-                const Vec2 now = slots[i].body.position;
-                if (std::bit_cast<std::uint64_t>(now) == std::bit_cast<std::uint64_t>(before)) continue;
-                boxes[i] = placement(i).box;
-                body_moved(i);
-            }
-            deepest = std::fmax(deepest, m.depth);
-        }
-        if (deepest <= 0.5f * desc.slop) break;
+        for (std::size_t r = 0; r < pcs.size(); ++r) deepest = std::fmax(deepest, visit(pcs[shock ? ground_up[r] : r], shock));
+        settled_all = deepest <= settled && join_new(false) == 0;
     }
-    // The proxies of bodies that moved here (friction above, or pushes); for the others
-    // sync_proxy would find their bounds unchanged and do nothing.
-    for (const Pair& p : push_pairs) {
-        for (const std::uint32_t i : {p.a, p.b}) {
-            if (moved[i]) sync_proxy(i);
+    // A crowd may use up its passes unsettled, and a push in the last of them can leave a
+    // body inside a wall: the contacts with something immovable have the last word (what
+    // that leaves between movable bodies waits for the next step, as any unsettled overlap).
+    if (!settled_all) {
+        join_new(true);
+        for (const PassContact& c : pcs) {
+            if (!(inverse_mass[c.a] > 0.0f && inverse_mass[c.b] > 0.0f)) visit(c, true);
         }
+    }
+    // The bodies that moved (friction or pushes) take their new positions, and their
+    // proxies follow.
+    for (std::uint32_t i = 0; i < slots.size(); ++i) {
+        if (!moved[i]) continue;
+        slots[i].body.position = positions[i];
+        sync_proxy(i);
     }
 }
 
