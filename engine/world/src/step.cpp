@@ -533,36 +533,66 @@ namespace {
 // displacements since the narrowphase: no shape test per visit. (Displacements, not
 // positions: they are small, so the difference keeps the precision of the overlap.)
 // That overlap bounds the MTD depth from above (the MTD is the smallest overlap over all
-// axes), so a contact settled along n is settled. Contacts with a circle are tested again at
-// each visit instead: a circle's normal turns as it moves around a corner or another circle,
-// and moving a circle is cheap (the circle is kept in the contact, the other shape stays
-// where it was placed). Mask MTDs are whole pixels: mask contacts are placed and tested again.
-enum class PassKind : std::uint8_t { along_normal, circle_a, circle_b, circles, mask };
+// axes), so a contact settled along n is settled.
+// A circle against another circle or a corner (a vertex region: 09-90) is a pair of points
+// instead, the centre and the other centre or the corner: its normal turns as they move, and
+// the depth is reach - |gap| along the gap between the points, as collide() finds it.
+// Mask MTDs are whole pixels: mask contacts are placed and tested again at each visit.
+enum class PassKind : std::uint8_t { along_normal, points, mask };
 
 struct PassContact {
     std::uint32_t a = 0, b = 0;
     Vec2 normal;
-    float offset = 0.0f;            // the overlap when found + dot(db - da, n) then
+    float offset = 0.0f;   // along_normal: the overlap when found + dot(db - da, n) then
+    Vec2 gap;              // points: B's point - A's point when found - (db - da) then
+    float reach = 0.0f;    // points: the radii
     float share_a = 0.0f, share_b = 0.0f;  // of a push: ima / (ima + imb), imb / (ima + imb)
     float shock_a = 0.0f, shock_b = 0.0f;  // the same under shock propagation
     PassKind kind = PassKind::along_normal;
-    Circle circle_a, circle_b;  // circle kinds: the circles, centres relative to their bodies
 };
-
-PassKind pass_kind(const Shape& a, const Shape& b) {
-    const bool ca = std::holds_alternative<Circle>(a), cb = std::holds_alternative<Circle>(b);
-    if (std::holds_alternative<PlacedMask>(a) || std::holds_alternative<PlacedMask>(b)) return PassKind::mask;
-    if (ca && cb) return PassKind::circles;
-    if (cb) return PassKind::circle_b;
-    if (ca) return PassKind::circle_a;
-    return PassKind::along_normal;
-}
 
 // Each body's share of a push, 0 when neither moves (k = 0, or a NaN mass).
 std::pair<float, float> push_shares(float ima, float imb) {
     const float k = ima + imb;
     if (!(k > 0.0f)) return {0.0f, 0.0f};
     return {ima / k, imb / k};
+}
+
+// Calls f(v) for each vertex of a convex shape (none for a circle or mask).
+template <typename F>
+void for_each_vertex(const Shape& s, F&& f) {
+    if (const auto* box = std::get_if<Aabb>(&s)) {
+        for (const Vec2 v : {box->min, Vec2{box->max.x, box->min.y}, box->max, Vec2{box->min.x, box->max.y}}) f(v);
+    } else if (const auto* obb = std::get_if<Obb>(&s)) {
+        const Rot q = obb->rotation();
+        for (const Vec2 h : {obb->half, Vec2{-obb->half.x, obb->half.y}, -obb->half, Vec2{obb->half.x, -obb->half.y}}) {
+            f(obb->center + rotate(q, h));
+        }
+    } else if (const auto* poly = std::get_if<Polygon>(&s)) {
+        for (const Vec2 v : poly->points()) f(v);
+    } else if (const auto* seg = std::get_if<Segment>(&s)) {
+        f(seg->a);
+        f(seg->b);
+    }
+}
+
+// The point of `other` that a hit `m` with `circle` came from, when it is a single point:
+// the other circle's centre, or a vertex whose region holds the centre (m's normal then runs
+// along the line from the vertex to the centre; a face's normal does not). `toward` is +1
+// when the circle is B (the normal runs from other to circle), -1 when it is A.
+std::optional<Vec2> point_feature(const Shape& other, const Circle& circle, const Manifold& m, float toward) {
+    if (const auto* c = std::get_if<Circle>(&other)) return c->center;
+    std::optional<Vec2> found;
+    float nearest = INFINITY;
+    for_each_vertex(other, [&](Vec2 v) {
+        const Vec2 d = toward * (circle.center - v);  // along the normal in a vertex region
+        const float len = length(d);
+        if (!(len > 0.0f) || !(len < nearest)) return;
+        nearest = len;
+        // The vertex region's normal is d / |d| (09-90), up to rounding.
+        found = length(Vec2{d.x / len, d.y / len} - m.normal) <= 1e-4f ? std::optional<Vec2>(v) : std::nullopt;
+    });
+    return found;
 }
 
 // Translated bounds, grown by `margin`: a superset of the bounds the shape would have if it
@@ -585,18 +615,28 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
     const float settled = std::fmax(0.5f * desc.slop, 0.0f);
     std::vector<PassContact> pcs;
     pcs.reserve(found.size());
-    // A contact with overlap `overlap` along n when B had moved `since` more than A.
-    const auto add = [&](std::uint32_t a, std::uint32_t b, Vec2 n, float overlap, Vec2 since) {
-        PassContact c{a, b, n, overlap + dot(since, n)};
+    // A contact between shapes sa and sb (placed when B had moved `since` more than A) whose
+    // overlap along n is `overlap` (m.depth for a hit, or minus a kept contact's gap).
+    const auto add = [&](std::uint32_t a, std::uint32_t b, const Shape& sa, const Shape& sb, const Manifold& m,
+                         float overlap, Vec2 since) {
+        PassContact c{a, b, m.normal, overlap + dot(since, m.normal)};
         std::tie(c.share_a, c.share_b) = push_shares(inverse_mass[a], inverse_mass[b]);
         const auto [ia, ib] = shock_masses(inverse_mass[a], inverse_mass[b], level[a], level[b], true);
         std::tie(c.shock_a, c.shock_b) = push_shares(ia, ib);
-        const detail::Placement& pa = placements[a];
-        const detail::Placement& pb = placements[b];
-        c.kind = pass_kind(pa.shape, pb.shape);
-        // (A placement's shape is at its position: the offset is exact for nearby floats.)
-        if (const Circle* circle = std::get_if<Circle>(&pa.shape)) c.circle_a = {circle->center - pa.position, circle->radius};
-        if (const Circle* circle = std::get_if<Circle>(&pb.shape)) c.circle_b = {circle->center - pb.position, circle->radius};
+        if (std::holds_alternative<PlacedMask>(sa) || std::holds_alternative<PlacedMask>(sb)) {
+            c.kind = PassKind::mask;
+        } else if (const auto* cb = std::get_if<Circle>(&sb); cb != nullptr && m.hit) {
+            if (const std::optional<Vec2> pa = point_feature(sa, *cb, m, 1.0f)) {
+                const float ra = std::holds_alternative<Circle>(sa) ? std::get<Circle>(sa).radius : 0.0f;
+                c = {c.a, c.b, c.normal, 0.0f, (cb->center - *pa) - since, ra + cb->radius,
+                     c.share_a, c.share_b, c.shock_a, c.shock_b, PassKind::points};
+            }
+        } else if (const auto* ca = std::get_if<Circle>(&sa); ca != nullptr && m.hit) {
+            if (const std::optional<Vec2> pb = point_feature(sb, *ca, m, -1.0f)) {
+                c = {c.a, c.b, c.normal, 0.0f, (*pb - ca->center) - since, ca->radius,
+                     c.share_a, c.share_b, c.shock_a, c.shock_b, PassKind::points};
+            }
+        }
         pcs.push_back(c);
     };
     // The narrowphase's contacts (hits, and kept contacts a gap apart: negative overlap) are
@@ -613,8 +653,11 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         }
         const NarrowContact& c = found[f];
         const float overlap = c.separation > 0.0f ? -c.separation : c.manifold.depth;
-        // (At the narrowphase's positions: friction may have moved the bodies since.)
-        add(p.a, p.b, c.manifold.normal, overlap, {});
+        // (At the narrowphase's placements: friction may have moved the bodies since. A kept
+        // contact a gap apart is pushed along its normal: its points are not in touch.)
+        Manifold m = c.manifold;
+        m.hit = c.separation <= 0.0f;
+        add(p.a, p.b, placements[p.a].shape, placements[p.b].shape, m, overlap, {});
         apart[k] = 0;
     }
     std::vector<std::uint32_t> ground_up;
@@ -622,26 +665,20 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         ground_up = ground_up_order(level, pcs.size(), [&](std::size_t k) { return std::pair{pcs[k].a, pcs[k].b}; });
     };
     order();
-    // The slot's position and placement brought up to the working copy (for shape tests).
-    const auto placed_now = [&](std::uint32_t i) -> const detail::Placement& {
-        slots[i].body.position = positions[i];
-        return placement(i);
-    };
     // Pushes can bring candidate pairs that were apart into each other: those with a body
-    // that moved and bounds that now touch are tested again, and the overlapping ones join
-    // the passes. Returns how many joined.
+    // that moved and bounds that now touch are tested again (placed where they are now; the
+    // placements stay the narrowphase's), and the overlapping ones join the passes.
     constexpr float kBoundsMargin = 1.0f / 64.0f;  // px: rounding of placement, up to |x| = 1e5
     const auto join = [&](std::uint32_t k) {
         if (!apart[k]) return false;
         const Pair& p = push_pairs[k];
         if (!(moved[p.a] | moved[p.b])) return false;
         if (!touch_moved(boxes[p.a], moved_by[p.a], boxes[p.b], moved_by[p.b], kBoundsMargin)) return false;
-        const detail::Placement& pa = placed_now(p.a);
-        const detail::Placement& pb = placed_now(p.b);
-        if (!overlaps(pa.box, pb.box)) return false;
-        const Manifold m = collide(pa.shape, pb.shape);
+        const Shape sa = placed_at(p.a, positions[p.a]);
+        const Shape sb = placed_at(p.b, positions[p.b]);
+        const Manifold m = collide(sa, sb);
         if (!m.hit || !(m.depth > settled)) return false;
-        add(p.a, p.b, m.normal, m.depth, moved_by[p.b] - moved_by[p.a]);
+        add(p.a, p.b, sa, sb, m, m.depth, moved_by[p.b] - moved_by[p.a]);
         apart[k] = 0;
         return true;
     };
@@ -656,27 +693,6 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         if (joined > 0) order();
         return joined;
     };
-    // The manifold of a circle or mask contact at the bodies' positions now. A circle is
-    // placed at its body's position (as placing would) and moved back by the other body's
-    // displacement since the other's placement, which stays where it is: the same manifold
-    // as placing both again, up to the rounding of one small difference.
-    const auto collide_now = [&](const PassContact& c) {
-        const auto at = [&](const Circle& local, std::uint32_t body, Vec2 shift = {}) {
-            return Circle{(positions[body] + local.center) + shift, local.radius};
-        };
-        switch (c.kind) {
-            case PassKind::circles: return collide(at(c.circle_a, c.a), at(c.circle_b, c.b));
-            case PassKind::circle_b: {
-                const detail::Placement& pa = placements[c.a];
-                return collide(pa.shape, Shape{at(c.circle_b, c.b, pa.position - positions[c.a])});
-            }
-            case PassKind::circle_a: {
-                const detail::Placement& pb = placements[c.b];
-                return collide(Shape{at(c.circle_a, c.a, pb.position - positions[c.b])}, pb.shape);
-            }
-            default: return collide(placed_now(c.a).shape, placed_now(c.b).shape);
-        }
-    };
     // One visit: the contact's overlap now, and if deeper than settled, the push along its
     // normal, split by the shares. Returns the overlap (0 when not pushed).
     const auto visit = [&](const PassContact& c, bool shock) {
@@ -687,8 +703,13 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         Vec2 normal = c.normal;
         if (c.kind == PassKind::along_normal) {
             depth = c.offset - dot(moved_by[c.b] - moved_by[c.a], c.normal);
+        } else if (c.kind == PassKind::points) {
+            const Vec2 gap = c.gap + (moved_by[c.b] - moved_by[c.a]);
+            const float len = length(gap);
+            depth = c.reach - len;
+            if (len > 0.0f && len < INFINITY) normal = {gap.x / len, gap.y / len};  // else the last one
         } else {
-            const Manifold m = collide_now(c);
+            const Manifold m = collide(placed_at(c.a, positions[c.a]), placed_at(c.b, positions[c.b]));
             if (!m.hit) return 0.0f;
             depth = m.depth;
             normal = m.normal;
