@@ -42,6 +42,12 @@ struct Placement {
     Shape shape;
 };
 
+// A body's position during resolve's passes, and how far it moved since the narrowphase.
+struct Moving {
+    Vec2 position;
+    Vec2 moved_by;
+};
+
 // A candidate or touching pair; a.index < b.index.
 struct Pair {
     std::uint32_t a = 0;
@@ -113,7 +119,7 @@ struct World::Impl {
     // phases: packed copies of what their pair loops read (an EntityDesc spans several cache
     // lines, and there are tens of thousands of pairs).
     std::vector<Aabb> boxes;               // placement(i).box (live bodies with a proxy)
-    std::vector<Vec2> positions;           // body.position (every slot); resolve's working copy
+    std::vector<Vec2> positions;           // body.position (every slot)
     std::vector<float> pushable;           // detail::pushability(body)
     std::vector<detail::MeetKey> meet_keys;  // detail::meet_key(body, id)
     std::vector<Contact> contacts;          // after the last step, sorted by (a, b)
@@ -159,11 +165,11 @@ struct World::Impl {
     // Pushes act on every candidate pair (`pairs`): a push can make a pair overlap that
     // did not at the narrowphase.
     void resolve(const std::vector<NarrowContact>& contacts, const std::vector<detail::Pair>& pairs, float dt);
-    // resolve's position passes: `positions` holds the bodies' positions after friction,
-    // `moved_by` their displacements since the narrowphase, `moved` marks the bodies moved.
+    // resolve's position passes, from the bodies' positions after friction (`moves`, each with
+    // its displacement since the narrowphase; `moved` marks the bodies moved).
     void relax_positions(const std::vector<NarrowContact>& found, const std::vector<detail::Pair>& push_pairs,
                          const std::vector<float>& inverse_mass, const std::vector<int>& level,
-                         std::vector<Vec2>& moved_by, std::vector<std::uint8_t>& moved);
+                         std::vector<detail::Moving>& moves, std::vector<std::uint8_t>& moved);
     // Appends the contacts fast circles stopped on to `touching`, and bullet hits to events.
     void sweeps(float dt, std::vector<Contact>& touching);
     void emit_events(std::vector<Contact> touching);

@@ -24,6 +24,11 @@ bool touch(const Aabb& a, const Aabb& b) {
     return (a.max.x >= b.min.x) & (a.min.x <= b.max.x) & (a.max.y >= b.min.y) & (a.min.y <= b.max.y);
 }
 
+// std::fmax(x, 0.0f) without the libm call (GCC calls fmaxf for NaN's sake): the same answer
+// for every x, -0 (kept, as glibc's fmaxf keeps its first argument on a tie) and NaN (0)
+// included. The pair loops take it many times a step.
+inline float max0(float x) { return x >= 0.0f ? x : 0.0f; }
+
 float wrap_angle(float a) {
     constexpr float kPi = std::numbers::pi_v<float>;
     if (a >= -kPi && a <= kPi) return a;
@@ -100,6 +105,8 @@ struct VelocityContact {
     float friction;
     float ima = 0.0f, imb = 0.0f;  // the bodies' inverse masses as resolution sees them (fixed
                                    // through a step; kept here, not re-read from the bodies)
+    float shock_ima = 0.0f, shock_imb = 0.0f;  // the same under shock propagation (set by
+                                               // solve_velocities from the ground levels)
     float normal_impulse = 0.0f;   // accumulated, >= 0
     float tangent_impulse = 0.0f;  // accumulated, |.| <= friction * normal_impulse
 };
@@ -223,15 +230,16 @@ struct Motion {
 
 Vec2 contact_velocity(const Motion& m) { return detail::contact_velocity(m.velocity, m.still); }
 
-void solve_velocity(std::vector<Motion>& motion, const std::vector<int>& level, VelocityContact& vc, bool shock) {
-    const auto [ima, imb] = shock_masses(vc.ima, vc.imb, level[vc.a], level[vc.b], shock);
+void solve_velocity(std::vector<Motion>& motion, VelocityContact& vc, bool shock) {
+    const float ima = shock ? vc.shock_ima : vc.ima;
+    const float imb = shock ? vc.shock_imb : vc.imb;
     const float k = ima + imb;
     if (!(k > 0.0f)) return;
     Motion& sa = motion[vc.a];
     Motion& sb = motion[vc.b];
     const Vec2 n = vc.normal;
     const float vn = dot(contact_velocity(sb) - contact_velocity(sa), n);
-    const float total = std::fmax(vc.normal_impulse + (vc.target - vn) / k, 0.0f);
+    const float total = max0(vc.normal_impulse + (vc.target - vn) / k);
     const float dn = total - vc.normal_impulse;
     vc.normal_impulse = total;
     sa.velocity -= (ima * dn) * n;
@@ -258,6 +266,7 @@ void solve_velocities(std::vector<Slot>& slots, const std::vector<int>& level, s
                       int passes) {
     const std::vector<std::uint32_t> ground_up =
         ground_up_order(level, vcs.size(), [&](std::size_t k) { return std::pair{vcs[k].a, vcs[k].b}; });
+    for (VelocityContact& vc : vcs) std::tie(vc.shock_ima, vc.shock_imb) = shock_masses(vc.ima, vc.imb, level[vc.a], level[vc.b], true);
     std::vector<Motion> motion(slots.size());
     for (const VelocityContact& vc : vcs) {
         for (const std::uint32_t i : {vc.a, vc.b}) {
@@ -268,9 +277,9 @@ void solve_velocities(std::vector<Slot>& slots, const std::vector<int>& level, s
     passes = std::max(passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
         if (pass == passes - 1 && passes > 1) {
-            for (const std::uint32_t k : ground_up) solve_velocity(motion, level, vcs[k], true);
+            for (const std::uint32_t k : ground_up) solve_velocity(motion, vcs[k], true);
         } else {
-            for (VelocityContact& vc : vcs) solve_velocity(motion, level, vc, false);
+            for (VelocityContact& vc : vcs) solve_velocity(motion, vc, false);
         }
     }
     for (const VelocityContact& vc : vcs) {
@@ -458,7 +467,7 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
 void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::vector<Pair>& pairs, float dt) {
     // From the packed pushabilities (broadphase_pairs): a trigger's -1 is inverse mass 0.
     std::vector<float> inverse_mass(slots.size());
-    for (std::size_t i = 0; i < slots.size(); ++i) inverse_mass[i] = std::fmax(pushable[i], 0.0f);
+    for (std::size_t i = 0; i < slots.size(); ++i) inverse_mass[i] = max0(pushable[i]);
     const auto resolvable = [&](const Pair& p) { return detail::resolvable(pushable[p.a], pushable[p.b]); };
     std::vector<const NarrowContact*> contacts_in;
     for (const NarrowContact& c : found) {
@@ -502,9 +511,10 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
 
     // What friction took from the tangential velocity is taken from this step's motion too
     // (semi-implicit Euler), so a body that friction stops does not slide on for a step.
-    // `positions` (packed by broadphase_pairs: the narrowphase's positions) becomes the
-    // passes' working copy; `moved_by` is each body's displacement since the narrowphase.
-    std::vector<Vec2> moved_by(slots.size());
+    // The passes' working copy of the positions (from broadphase_pairs' packed copy: the
+    // narrowphase's), with each body's displacement since.
+    std::vector<detail::Moving> moves(slots.size());
+    for (std::size_t i = 0; i < slots.size(); ++i) moves[i].position = positions[i];
     std::vector<std::uint8_t> moved(slots.size(), 0);
     for (const NarrowContact* c : contacts_in) {
         for (std::uint32_t i : {c->pair.a, c->pair.b}) {
@@ -513,12 +523,11 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
             const Vec2 before = s.body.position;
             s.body.position += dt * s.friction_dv;
             s.friction_dv = {};  // once per body
-            positions[i] = s.body.position;
-            moved_by[i] = s.body.position - before;
+            moves[i] = {s.body.position, s.body.position - before};
             moved[i] = 1;
         }
     }
-    relax_positions(found, push_pairs, inverse_mass, level, moved_by, moved);
+    relax_positions(found, push_pairs, inverse_mass, level, moves, moved);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -607,7 +616,7 @@ bool touch_moved(const Aabb& a, Vec2 da, const Aabb& b, Vec2 db, float margin) {
 
 void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const std::vector<Pair>& push_pairs,
                                   const std::vector<float>& inverse_mass, const std::vector<int>& level,
-                                  std::vector<Vec2>& moved_by, std::vector<std::uint8_t>& moved) {
+                                  std::vector<detail::Moving>& moves, std::vector<std::uint8_t>& moved) {
     // A contact no deeper than half the slop is settled and not pushed: in a crowd most
     // pushes are that small, each moves bodies that then disturb their neighbours, and the
     // passes stop anyway once every contact is within it (Box2D likewise leaves the last
@@ -673,12 +682,12 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         if (!apart[k]) return false;
         const Pair& p = push_pairs[k];
         if (!(moved[p.a] | moved[p.b])) return false;
-        if (!touch_moved(boxes[p.a], moved_by[p.a], boxes[p.b], moved_by[p.b], kBoundsMargin)) return false;
-        const Shape sa = placed_at(p.a, positions[p.a]);
-        const Shape sb = placed_at(p.b, positions[p.b]);
+        if (!touch_moved(boxes[p.a], moves[p.a].moved_by, boxes[p.b], moves[p.b].moved_by, kBoundsMargin)) return false;
+        const Shape sa = placed_at(p.a, moves[p.a].position);
+        const Shape sb = placed_at(p.b, moves[p.b].position);
         const Manifold m = collide(sa, sb);
         if (!m.hit || !(m.depth > settled)) return false;
-        add(p.a, p.b, sa, sb, m, m.depth, moved_by[p.b] - moved_by[p.a]);
+        add(p.a, p.b, sa, sb, m, m.depth, moves[p.b].moved_by - moves[p.a].moved_by);
         apart[k] = 0;
         return true;
     };
@@ -701,15 +710,17 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         if (!(wa + wb > 0.0f)) return 0.0f;
         float depth = 0.0f;
         Vec2 normal = c.normal;
+        detail::Moving& ma = moves[c.a];
+        detail::Moving& mb = moves[c.b];
         if (c.kind == PassKind::along_normal) {
-            depth = c.offset - dot(moved_by[c.b] - moved_by[c.a], c.normal);
+            depth = c.offset - dot(mb.moved_by - ma.moved_by, c.normal);
         } else if (c.kind == PassKind::points) {
-            const Vec2 gap = c.gap + (moved_by[c.b] - moved_by[c.a]);
+            const Vec2 gap = c.gap + (mb.moved_by - ma.moved_by);
             const float len = length(gap);
             depth = c.reach - len;
             if (len > 0.0f && len < INFINITY) normal = {gap.x / len, gap.y / len};  // else the last one
         } else {
-            const Manifold m = collide(placed_at(c.a, positions[c.a]), placed_at(c.b, positions[c.b]));
+            const Manifold m = collide(placed_at(c.a, ma.position), placed_at(c.b, mb.position));
             if (!m.hit) return 0.0f;
             depth = m.depth;
             normal = m.normal;
@@ -724,10 +735,10 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
             push_a = whole(push_a);
             push_b = whole(mtd) - push_a;
         }
-        positions[c.a] -= push_a;
-        positions[c.b] += push_b;
-        moved_by[c.a] -= push_a;
-        moved_by[c.b] += push_b;
+        ma.position -= push_a;
+        mb.position += push_b;
+        ma.moved_by -= push_a;
+        mb.moved_by += push_b;
         moved[c.a] |= static_cast<std::uint8_t>(wa > 0.0f);
         moved[c.b] |= static_cast<std::uint8_t>(wb > 0.0f);
         return depth;
@@ -736,11 +747,17 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
     bool settled_all = false;
     for (int pass = 0; pass < passes && !settled_all; ++pass) {
         const bool shock = pass >= passes / 2;
-        // Before the shock passes every new overlap joins, and before each of them those with
-        // something immovable; whenever the passes settle, every new overlap again.
-        if (shock) join_new(/*grounded_only=*/pass > passes / 2);
+        // Whenever the passes settle every new overlap joins (and the passes go on if any
+        // did); before each shock pass those with something immovable, which the ground-up
+        // order takes first. (Joining every pair mid-way in a crowd that never settles cost
+        // a shape test for each of its many near misses, to find a few overlaps that the
+        // next step's narrowphase finds anyway.)
+        if (shock) join_new(/*grounded_only=*/true);
         float deepest = 0.0f;
-        for (std::size_t r = 0; r < pcs.size(); ++r) deepest = std::fmax(deepest, visit(pcs[shock ? ground_up[r] : r], shock));
+        for (std::size_t r = 0; r < pcs.size(); ++r) {
+            const float depth = visit(pcs[shock ? ground_up[r] : r], shock);  // >= 0
+            deepest = depth > deepest ? depth : deepest;
+        }
         settled_all = deepest <= settled && join_new(false) == 0;
     }
     // A crowd may use up its passes unsettled, and a push in the last of them can leave a
@@ -756,7 +773,7 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
     // proxies follow.
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         if (!moved[i]) continue;
-        slots[i].body.position = positions[i];
+        slots[i].body.position = moves[i].position;
         sync_proxy(i);
     }
 }

@@ -58,19 +58,19 @@
 //                step's motion, so a body that friction stops does not slide on a step.
 //                position: relaxation passes over the narrowphase's contacts, each pushing
 //                along its MTD normal by the overlap still left along it (exact for the
-//                translations the passes make, and never less than the MTD depth; contacts
-//                with a circle or a mask are tested again at each visit instead, so a
-//                circle's normal turns as it moves): a dynamic body against a static or
-//                kinematic one moves by the whole push; two dynamic bodies split it by
-//                inverse mass. A contact no deeper than slop / 2 counts as settled and is
-//                not pushed. Candidate pairs that pushes bring into each other join the
-//                passes: all of them before the first shock pass and whenever the passes
-//                settle, those with an immovable body before every shock pass. The passes
-//                stop once nothing is deeper than slop / 2 and nothing joined; the second
-//                half order contacts from the ground up and let the body nearer an immovable
-//                one stand still (shock propagation), so resting stacks end within `slop`.
-//                A crowd that uses up its passes unsettled leaves the rest for the next
-//                step, but the contacts with immovable bodies have the last word.
+//                translations the passes make, and never less than the MTD depth; a circle
+//                against another circle or a corner is a pair of points, its normal turning
+//                as they move; mask contacts are tested again at each visit): a dynamic body
+//                against a static or kinematic one moves by the whole push; two dynamic
+//                bodies split it by inverse mass. A contact no deeper than slop / 2 counts as
+//                settled and is not pushed. Candidate pairs that pushes bring into each other
+//                join the passes: all of them whenever the passes settle, those with an
+//                immovable body before every shock pass. The passes stop once nothing is
+//                deeper than slop / 2 and nothing joined; the second half order contacts from
+//                the ground up and let the body nearer an immovable one stand still (shock
+//                propagation), so resting stacks end within `slop`. A crowd that uses up its
+//                passes unsettled leaves the rest to the next step, but the contacts with
+//                immovable bodies have the last word.
 //   sweeps       bullets in id order: segment cast from the old to the new position against
 //                everything they can hit (a bullet at rest casts nothing, so a stopped
 //                bullet reports its hit once); the first hit (ties: the lower id) is a bullet_hit
