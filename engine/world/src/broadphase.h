@@ -51,16 +51,19 @@ public:
     int create(const Aabb& tight, std::uint32_t index);  // usable(tight) required
     void destroy(int proxy);
     // Keeps the proxy when `tight` is still inside its fat bounds; otherwise re-fattens it by
-    // a margin, stretched along `displacement` (this step's motion).
-    void move(int proxy, const Aabb& tight, Vec2 displacement) {
+    // a margin, stretched along `displacement` (this step's motion). True when it re-fattened.
+    bool move(int proxy, const Aabb& tight, Vec2 displacement) {
         const Aabb& fat = fat_[static_cast<std::size_t>(proxy)];
         if (fat.min.x <= tight.min.x && fat.min.y <= tight.min.y && tight.max.x <= fat.max.x &&
             tight.max.y <= fat.max.y) {
-            return;
+            return false;
         }
         refatten(proxy, tight, displacement);
+        return true;
     }
     Aabb fat_bounds(int proxy) const { return fat_[static_cast<std::size_t>(proxy)]; }
+    // The test query() applies to fat bounds: whether `fat` overlaps `box` (touching counts).
+    static bool overlap(const Aabb& fat, const Aabb& box) { return overlap_lanes(fat, lanes(box)); }
 
     // How the queries that found the tree behind went: scanned, or caught it up (for tests;
     // read while no query runs).

@@ -3,8 +3,10 @@
 // the first contact instead of passing through. See the MANUAL in jostle/world.h.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "internal.h"
+#include "jostle/core/error.h"
 
 namespace jostle {
 
@@ -46,7 +48,7 @@ void World::Impl::bounce(std::uint32_t a, std::uint32_t b, Vec2 n) {
     bb.velocity += (imb * jt) * t;
 }
 
-void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
+void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::vector<detail::Pair>& pairs) {
     const auto n_slots = static_cast<std::uint32_t>(slots.size());
 
     // Bullets, in id order.
@@ -120,8 +122,72 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
         if (!despawned) sync_proxy(i, slots[i].body.position - paths.back().from);
     }
 
-    // Fast circles, in id order: each against everything at its current (resolved) place.
-    for (std::uint32_t i = 0; i < n_slots; ++i) {
+    // Fast circles, in id order: each against everything at its current (resolved) place,
+    // that is every collider whose fat bounds overlap the swept circle's bounds. While those
+    // bounds lie inside the circle's own fat bounds, unchanged since the broadphase, such a
+    // collider is the other body of one of the circle's candidate pairs, or one whose fat
+    // bounds changed since (`refattened`, a few in a step): the same colliders as a tree query,
+    // found without bringing the tree up to date with every body that moved.
+    if (fast_circles.empty()) return;
+    std::vector<std::uint32_t> rank(n_slots, UINT32_MAX);  // in fast_circles
+    for (std::uint32_t k = 0; k < fast_circles.size(); ++k) rank[fast_circles[k]] = k;
+    std::vector<std::uint32_t> first(fast_circles.size() + 1, 0);  // each circle's partners: CSR
+    for (const detail::Pair& p : pairs) {
+        if (rank[p.a] != UINT32_MAX) ++first[rank[p.a] + 1];
+        if (rank[p.b] != UINT32_MAX) ++first[rank[p.b] + 1];
+    }
+    for (std::size_t k = 0; k < fast_circles.size(); ++k) first[k + 1] += first[k];
+    std::vector<std::uint32_t> partners(first.back());
+    {
+        std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+        for (const detail::Pair& p : pairs) {
+            if (rank[p.a] != UINT32_MAX) partners[next[rank[p.a]]++] = p.b;
+            if (rank[p.b] != UINT32_MAX) partners[next[rank[p.b]]++] = p.a;
+        }
+    }
+    // Calls f(j) for every collider whose fat bounds overlap `region`, circle i's sweep (some
+    // more than once; the best hit is the same whichever order they come in).
+    const auto colliders_near = [&](std::uint32_t i, const Aabb& region, const auto& f) {
+        const int proxy = slots[i].proxy;
+        const bool unchanged = proxy >= 0 && std::find(refattened.begin(), refattened.end(), i) == refattened.end();
+        const Aabb own = proxy >= 0 ? broadphase.fat_bounds(proxy) : Aabb{};
+        if (!unchanged || !(own.min.x <= region.min.x && own.min.y <= region.min.y && region.max.x <= own.max.x &&
+                            region.max.y <= own.max.y)) {
+            broadphase.query(region, [&](std::uint32_t j) { f(j); });
+            return;
+        }
+#ifndef NDEBUG
+        std::vector<std::uint32_t> by_pairs;  // what this path hands on, checked below
+#endif
+        const auto near = [&](std::uint32_t j) {
+            const int pj = slots[j].proxy;
+            if (pj < 0 || !detail::Broadphase::overlap(broadphase.fat_bounds(pj), region)) return;
+#ifndef NDEBUG
+            by_pairs.push_back(j);
+#endif
+            f(j);
+        };
+        for (std::uint32_t e = first[rank[i]]; e < first[rank[i] + 1]; ++e) near(partners[e]);
+        for (const std::uint32_t j : refattened) near(j);
+#ifndef NDEBUG
+        // Debug builds (CI plays every scenario in one) check the claim against the tree, for
+        // the colliders a sweep may meet (the candidate pairs leave out pairs that never meet).
+        const auto meets = [&](std::uint32_t j) {
+            return j != i && blocks(slots[j].body) && detail::may_meet(slots[i].body, id_of(i), slots[j].body, id_of(j));
+        };
+        std::vector<std::uint32_t> by_tree;
+        broadphase.query(region, [&](std::uint32_t j) {
+            if (meets(j)) by_tree.push_back(j);
+        });
+        std::erase_if(by_pairs, [&](std::uint32_t j) { return !meets(j); });
+        for (auto* v : {&by_pairs, &by_tree}) {
+            std::sort(v->begin(), v->end());
+            v->erase(std::unique(v->begin(), v->end()), v->end());
+        }
+        JOSTLE_ASSERT(by_pairs == by_tree, "a fast circle's candidates are not the colliders the tree finds");
+#endif
+    };
+    for (const std::uint32_t i : fast_circles) {
         Slot& s = slots[i];
         if (!s.alive || !s.fast) continue;
         const EntityId id = id_of(i);
@@ -139,7 +205,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching) {
             const Aabb to_box = bounds(Circle{circle->center + motion, circle->radius});
             std::uint32_t best = n_slots;
             SweepHit best_hit;
-            broadphase.query(Aabb{min(from_box.min, to_box.min), max(from_box.max, to_box.max)}, [&](std::uint32_t j) {
+            colliders_near(i, Aabb{min(from_box.min, to_box.min), max(from_box.max, to_box.max)}, [&](std::uint32_t j) {
                 // Only what resolution could push it out of stops it (a body with no inverse
                 // mass passes through static ones, swept or not).
                 if (j == i || !blocks(slots[j].body) || !detail::may_meet(s.body, id, slots[j].body, id_of(j)) ||

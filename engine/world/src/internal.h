@@ -122,6 +122,10 @@ struct World::Impl {
     std::vector<Vec2> positions;           // body.position (every slot)
     std::vector<float> pushable;           // detail::pushability(body)
     std::vector<detail::MeetKey> meet_keys;  // detail::meet_key(body, id)
+    // The slots whose fat bounds changed (proxy made, re-fattened or dropped) since the
+    // step's broadphase: with the candidate pairs, all a fast circle's sweep can meet.
+    std::vector<std::uint32_t> refattened;
+    std::vector<std::uint32_t> fast_circles;  // this step's, in slot order (integrate)
     std::vector<Contact> contacts;          // after the last step, sorted by (a, b)
     std::vector<Event> events;
     std::vector<SweptPath> paths;
@@ -146,7 +150,9 @@ struct World::Impl {
     void turn(std::uint32_t index);
     // Brings slot index's proxy up to date with its placed collider (creating or dropping
     // it when the bounds become usable or not).
-    void sync_proxy(std::uint32_t index, Vec2 displacement = {});
+    // A fast circle's proxy also covers where this step's motion (`sweep`) takes it, so that
+    // its sweep's candidates are among its candidate pairs.
+    void sync_proxy(std::uint32_t index, Vec2 displacement = {}, Vec2 sweep = {});
     void remove(std::uint32_t index);  // destroy: free the slot, drop its contacts
 
     // The phases of step(), in order (step.cpp, continuous.cpp).
@@ -171,7 +177,8 @@ struct World::Impl {
                          const std::vector<float>& inverse_mass, const std::vector<int>& level,
                          std::vector<detail::Moving>& moves, std::vector<std::uint8_t>& moved);
     // Appends the contacts fast circles stopped on to `touching`, and bullet hits to events.
-    void sweeps(float dt, std::vector<Contact>& touching);
+    // `pairs` are the step's candidate pairs (broadphase_pairs).
+    void sweeps(float dt, std::vector<Contact>& touching, const std::vector<detail::Pair>& pairs);
     void emit_events(std::vector<Contact> touching);
 
     // A single contact's velocity response (impulse with restitution and friction), used by

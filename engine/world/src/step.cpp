@@ -80,7 +80,7 @@ void World::step(float dt) {
                             c.trigger && w.slots[c.pair.b].body.kind == BodyKind::trigger, c.corner});
     }
     w.resolve(found, pairs, dt);
-    w.sweeps(dt, touching);
+    w.sweeps(dt, touching, pairs);
     ++w.steps;
     w.emit_events(std::move(touching));
     // The handler may change the world, even replace itself: call a copy. The events vector
@@ -298,6 +298,7 @@ void solve_velocities(std::vector<Slot>& slots, const std::vector<int>& level, s
 // ---------------------------------------------------------------------------------------
 
 void World::Impl::integrate(float dt) {
+    fast_circles.clear();
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         Slot& s = slots[i];
         s.fast = false;
@@ -339,10 +340,11 @@ void World::Impl::integrate(float dt) {
             if (const auto* c = std::get_if<Circle>(&b.collider.local_shape())) {
                 // More than half its radius in one step could carry it through a thin wall.
                 s.fast = length(motion) > 0.5f * c->radius;
+                if (s.fast) fast_circles.push_back(i);
             }
         }
         if (!s.fast) b.position += motion;
-        sync_proxy(i, motion);
+        sync_proxy(i, motion, s.fast ? motion : Vec2{});
     }
 }
 
@@ -356,6 +358,7 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
     // from each moving body or, faster when many things move, all at once by the grid: the
     // same pairs either way (tests/world/pair_grid_test.cpp).
     grid_items.clear();
+    refattened.clear();  // the pairs below are over the fat bounds as they are now
     boxes.resize(slots.size());
     positions.resize(slots.size());
     pushable.resize(slots.size());

@@ -89,23 +89,29 @@ const detail::Placement& World::Impl::placement(std::uint32_t index) {
     return p;
 }
 
-void World::Impl::sync_proxy(std::uint32_t index, Vec2 displacement) {
+void World::Impl::sync_proxy(std::uint32_t index, Vec2 displacement, Vec2 sweep) {
     detail::Slot& s = slots[index];
-    const Aabb tight = placement(index).box;
+    Aabb tight = placement(index).box;
+    if (sweep.x != 0.0f || sweep.y != 0.0f) tight = {min(tight.min, tight.min + sweep), max(tight.max, tight.max + sweep)};
     const bool usable = s.alive && detail::Broadphase::usable(tight);
     if (!usable) {
-        if (s.proxy >= 0) broadphase.destroy(s.proxy);
+        if (s.proxy < 0) return;
+        broadphase.destroy(s.proxy);
         s.proxy = -1;
     } else if (s.proxy < 0) {
         s.proxy = broadphase.create(tight, index);
-    } else {
-        broadphase.move(s.proxy, tight, displacement);
+    } else if (!broadphase.move(s.proxy, tight, displacement)) {
+        return;
     }
+    refattened.push_back(index);
 }
 
 void World::Impl::remove(std::uint32_t index) {
     detail::Slot& s = slots[index];
-    if (s.proxy >= 0) broadphase.destroy(s.proxy);
+    if (s.proxy >= 0) {
+        broadphase.destroy(s.proxy);
+        refattened.push_back(index);
+    }
     s.proxy = -1;
     s.alive = false;
     const EntityId id{index, s.generation};
