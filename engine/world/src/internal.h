@@ -22,7 +22,6 @@ struct Slot {
     int proxy = -1;                // broadphase proxy, -1 when the collider meets nothing
     std::uint64_t mask_fingerprint = 0;  // hash of the mask's pixels (0: no mask)
     bool fast = false;             // this step: a dynamic circle left for the sweeps phase
-    Vec2 friction_dv;              // this step: velocity change from friction impulses
     // The collider turned by turned_angle (Collider::turned): while the body's angle is the
     // same, placing it is a translation (no sine, cosine or rotation per placement).
     Shape turned;
@@ -40,6 +39,18 @@ struct Placement {
     bool valid = false;
     Aabb box;  // bounds(shape)
     Shape shape;
+};
+
+// A body as the step's velocity passes and pair loops read it, packed once a step by
+// integrate (an EntityDesc spans several cache lines; a step reads thousands of pairs). The
+// velocity is the step's working copy from integrate to the end of resolve.
+struct BodyState {
+    Vec2 velocity;
+    Vec2 friction_dv;           // velocity change from friction impulses (within a solve)
+    float inverse_mass = 0.0f;  // resolution_inverse_mass
+    float friction = 0.0f;
+    float restitution = 0.0f;
+    bool still = false;         // a static body: contacts see it at rest
 };
 
 // A body's position during resolve's passes, and how far it moved since the narrowphase.
@@ -115,13 +126,15 @@ struct World::Impl {
     detail::PairGrid pair_grid;     // all candidate pairs at once, over the same fat bounds
     std::vector<detail::GridItem> grid_items;  // scratch of broadphase_pairs, kept to reuse
     std::vector<detail::GridPair> grid_pairs;
-    // Scratch of the step, one entry a slot, filled by broadphase_pairs for the later
-    // phases: packed copies of what their pair loops read (an EntityDesc spans several cache
-    // lines, and there are tens of thousands of pairs).
+    // Scratch of the step, one entry a slot: packed copies of what its pair loops read (an
+    // EntityDesc spans several cache lines, and there are tens of thousands of pairs).
+    // Filled by integrate:
+    std::vector<detail::BodyState> states;
+    std::vector<float> pushable;             // detail::pushability(body)
+    std::vector<detail::MeetKey> meet_keys;  // detail::meet_key(body, id)
+    // and by broadphase_pairs, for the narrowphase and resolve:
     std::vector<Aabb> boxes;               // placement(i).box (live bodies with a proxy)
     std::vector<Vec2> positions;           // body.position (every slot)
-    std::vector<float> pushable;           // detail::pushability(body)
-    std::vector<detail::MeetKey> meet_keys;  // detail::meet_key(body, id)
     // The slots whose fat bounds changed (proxy made, re-fattened or dropped) since the
     // step's broadphase: with the candidate pairs, all a fast circle's sweep can meet.
     std::vector<std::uint32_t> refattened;

@@ -13,6 +13,7 @@
 
 namespace jostle {
 
+using detail::BodyState;
 using detail::Pair;
 using detail::Slot;
 
@@ -36,13 +37,13 @@ float wrap_angle(float a) {
     return std::remainder(a, 2.0f * kPi);  // exact, so the same in every build
 }
 
-float mixed_friction(const EntityDesc& a, const EntityDesc& b) {
-    const float f = std::sqrt(std::fmax(a.friction, 0.0f) * std::fmax(b.friction, 0.0f));
+float mixed_friction(float a, float b) {
+    const float f = std::sqrt(std::fmax(a, 0.0f) * std::fmax(b, 0.0f));
     return std::isfinite(f) ? f : 0.0f;
 }
 
-float mixed_restitution(const EntityDesc& a, const EntityDesc& b) {
-    const float e = std::fmax(a.restitution, b.restitution);
+float mixed_restitution(float a, float b) {
+    const float e = std::fmax(a, b);
     return std::isfinite(e) && e > 0.0f ? e : 0.0f;
 }
 
@@ -105,8 +106,14 @@ struct VelocityContact {
     float friction;
     float ima = 0.0f, imb = 0.0f;  // the bodies' inverse masses as resolution sees them (fixed
                                    // through a step; kept here, not re-read from the bodies)
-    float shock_ima = 0.0f, shock_imb = 0.0f;  // the same under shock propagation (set by
-                                               // solve_velocities from the ground levels)
+    // What a visit uses, for plain passes ([0]) and under shock propagation ([1], set by
+    // solve_velocities from the ground levels): the masses, and 1 / (ima + imb), the
+    // contact's effective mass (0 when neither body moves), so that a visit multiplies where
+    // it would divide twice (the divisions were a quarter of the passes' time).
+    struct Masses {
+        float ima = 0.0f, imb = 0.0f, inv_k = 0.0f;
+    };
+    std::array<Masses, 2> masses;
     float normal_impulse = 0.0f;   // accumulated, >= 0
     float tangent_impulse = 0.0f;  // accumulated, |.| <= friction * normal_impulse
 };
@@ -206,40 +213,26 @@ std::pair<float, float> shock_masses(float ima, float imb, int level_a, int leve
     return {ima, imb};
 }
 
-// Every body's resolution_inverse_mass, packed: the step's pair loops read it for thousands
-// of pairs, and a body's EntityDesc spans several cache lines.
-std::vector<float> inverse_masses(const std::vector<Slot>& slots) {
-    std::vector<float> out(slots.size());
-    for (std::size_t i = 0; i < slots.size(); ++i) out[i] = detail::resolution_inverse_mass(slots[i].body);
-    return out;
-}
-
-VelocityContact velocity_contact(std::uint32_t a, const EntityDesc& ba, std::uint32_t b, const EntityDesc& bb,
+VelocityContact velocity_contact(std::uint32_t a, const BodyState& sa, std::uint32_t b, const BodyState& sb,
                                  Vec2 normal, float target) {
-    return {a, b, normal, target, mixed_friction(ba, bb), detail::resolution_inverse_mass(ba),
-            detail::resolution_inverse_mass(bb)};
+    return {a, b, normal, target, mixed_friction(sa.friction, sb.friction), sa.inverse_mass, sb.inverse_mass};
 }
 
-// A body's velocity state, packed for the solver's passes: each contact reads and writes
-// two bodies many times, and an EntityDesc spans several cache lines.
-struct Motion {
-    Vec2 velocity;
-    Vec2 friction_dv;
-    bool still = false;  // a static body
-};
+Vec2 contact_velocity(const BodyState& m) { return detail::contact_velocity(m.velocity, m.still); }
 
-Vec2 contact_velocity(const Motion& m) { return detail::contact_velocity(m.velocity, m.still); }
-
-void solve_velocity(std::vector<Motion>& motion, VelocityContact& vc, bool shock) {
-    const float ima = shock ? vc.shock_ima : vc.ima;
-    const float imb = shock ? vc.shock_imb : vc.imb;
+VelocityContact::Masses masses_of(float ima, float imb) {
     const float k = ima + imb;
-    if (!(k > 0.0f)) return;
-    Motion& sa = motion[vc.a];
-    Motion& sb = motion[vc.b];
+    return {ima, imb, k > 0.0f ? 1.0f / k : 0.0f};
+}
+
+void solve_velocity(std::vector<BodyState>& motion, VelocityContact& vc, bool shock) {
+    const auto [ima, imb, inv_k] = vc.masses[shock ? 1 : 0];
+    if (!(inv_k > 0.0f)) return;
+    BodyState& sa = motion[vc.a];
+    BodyState& sb = motion[vc.b];
     const Vec2 n = vc.normal;
     const float vn = dot(contact_velocity(sb) - contact_velocity(sa), n);
-    const float total = max0(vc.normal_impulse + (vc.target - vn) / k);
+    const float total = max0(vc.normal_impulse + (vc.target - vn) / (ima + imb));
     const float dn = total - vc.normal_impulse;
     vc.normal_impulse = total;
     sa.velocity -= (ima * dn) * n;
@@ -248,7 +241,7 @@ void solve_velocity(std::vector<Motion>& motion, VelocityContact& vc, bool shock
     const Vec2 t = perp(n);
     const float vt = dot(contact_velocity(sb) - contact_velocity(sa), t);
     const float limit = vc.friction * vc.normal_impulse;
-    const float total_t = std::clamp(vc.tangent_impulse - vt / k, -limit, limit);
+    const float total_t = std::clamp(vc.tangent_impulse - vt / (ima + imb), -limit, limit);
     const float dt_impulse = total_t - vc.tangent_impulse;
     vc.tangent_impulse = total_t;
     const Vec2 dva = -(ima * dt_impulse) * t;
@@ -260,19 +253,14 @@ void solve_velocity(std::vector<Motion>& motion, VelocityContact& vc, bool shock
 }
 
 // `passes` passes in the given order; the last one goes ground up with shock propagation,
-// so a resting stack ends still. The contacts' bodies are solved in a packed copy of their
-// velocities, written back at the end (the same operations on the same values).
-void solve_velocities(std::vector<Slot>& slots, const std::vector<int>& level, std::vector<VelocityContact>& vcs,
+// so a resting stack ends still. The bodies' velocities are the step's packed working copy.
+void solve_velocities(std::vector<BodyState>& motion, const std::vector<int>& level, std::vector<VelocityContact>& vcs,
                       int passes) {
     const std::vector<std::uint32_t> ground_up =
         ground_up_order(level, vcs.size(), [&](std::size_t k) { return std::pair{vcs[k].a, vcs[k].b}; });
-    for (VelocityContact& vc : vcs) std::tie(vc.shock_ima, vc.shock_imb) = shock_masses(vc.ima, vc.imb, level[vc.a], level[vc.b], true);
-    std::vector<Motion> motion(slots.size());
-    for (const VelocityContact& vc : vcs) {
-        for (const std::uint32_t i : {vc.a, vc.b}) {
-            const Slot& s = slots[i];
-            motion[i] = {s.body.velocity, s.friction_dv, s.body.kind == BodyKind::static_body};
-        }
+    for (VelocityContact& vc : vcs) {
+        const auto [ima, imb] = shock_masses(vc.ima, vc.imb, level[vc.a], level[vc.b], true);
+        vc.masses = {masses_of(vc.ima, vc.imb), masses_of(ima, imb)};
     }
     passes = std::max(passes, 1);
     for (int pass = 0; pass < passes; ++pass) {
@@ -280,12 +268,6 @@ void solve_velocities(std::vector<Slot>& slots, const std::vector<int>& level, s
             for (const std::uint32_t k : ground_up) solve_velocity(motion, vcs[k], true);
         } else {
             for (VelocityContact& vc : vcs) solve_velocity(motion, vc, false);
-        }
-    }
-    for (const VelocityContact& vc : vcs) {
-        for (const std::uint32_t i : {vc.a, vc.b}) {
-            slots[i].body.velocity = motion[i].velocity;
-            slots[i].friction_dv = motion[i].friction_dv;
         }
     }
 }
@@ -299,11 +281,21 @@ void solve_velocities(std::vector<Slot>& slots, const std::vector<int>& level, s
 
 void World::Impl::integrate(float dt) {
     fast_circles.clear();
+    // The step's packed copies of what its pair loops read of each body (one pass here
+    // instead of a few cache misses a pair): state (with the working copy of the velocity,
+    // from here to the end of resolve), pushability and filter keys.
+    states.resize(slots.size());
+    pushable.resize(slots.size());
+    meet_keys.resize(slots.size());
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         Slot& s = slots[i];
+        EntityDesc& b = s.body;
         s.fast = false;
-        s.friction_dv = {};
-        if (s.alive && s.body.kind == BodyKind::dynamic) s.body.velocity += (s.body.gravity_scale * dt) * desc.gravity;
+        if (s.alive && b.kind == BodyKind::dynamic) b.velocity += (b.gravity_scale * dt) * desc.gravity;
+        states[i] = {b.velocity, {}, detail::resolution_inverse_mass(b), b.friction, b.restitution,
+                     b.kind == BodyKind::static_body};
+        pushable[i] = detail::pushability(b);
+        meet_keys[i] = detail::meet_key(b, id_of(i));
     }
     // Bodies resting on something keep resting: the contacts carried from the last step take
     // the approach out of this step's velocity before it moves anything (Box2D's order). A
@@ -312,21 +304,26 @@ void World::Impl::integrate(float dt) {
     std::vector<VelocityContact> carried;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
     for (const Contact& c : contacts) {
-        const EntityDesc& ba = slots[c.a.index].body;
-        const EntityDesc& bb = slots[c.b.index].body;
-        if (c.trigger || c.corner || !detail::resolvable(ba, bb) || !detail::may_meet(ba, c.a, bb, c.b)) continue;
-        carried.push_back(velocity_contact(c.a.index, ba, c.b.index, bb, c.normal, 0.0f));
-        edges.emplace_back(c.a.index, c.b.index);
+        const std::uint32_t a = c.a.index, b = c.b.index;
+        if (c.trigger || c.corner || !detail::resolvable(pushable[a], pushable[b]) ||
+            !detail::may_meet(meet_keys[a], meet_keys[b])) {
+            continue;
+        }
+        carried.push_back(velocity_contact(a, states[a], b, states[b], c.normal, 0.0f));
+        edges.emplace_back(a, b);
     }
     if (!carried.empty()) {
-        solve_velocities(slots, ground_levels(inverse_masses(slots), edges, edges), carried, desc.velocity_passes);
-        for (Slot& s : slots) s.friction_dv = {};  // friction here acts before the motion
+        std::vector<float> inverse_mass(slots.size());
+        for (std::size_t i = 0; i < slots.size(); ++i) inverse_mass[i] = states[i].inverse_mass;
+        solve_velocities(states, ground_levels(inverse_mass, edges, edges), carried, desc.velocity_passes);
+        for (const auto& [a, b] : edges) states[a].friction_dv = states[b].friction_dv = {};  // friction here acts before the motion
     }
 
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         Slot& s = slots[i];
         if (!s.alive) continue;
         EntityDesc& b = s.body;
+        b.velocity = states[i].velocity;
         // Bullets move along their path in the sweeps phase; static bodies never move.
         if (b.kind == BodyKind::static_body) continue;
         const float angle = wrap_angle(b.angle + b.angular_velocity * dt);
@@ -361,14 +358,10 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
     refattened.clear();  // the pairs below are over the fat bounds as they are now
     boxes.resize(slots.size());
     positions.resize(slots.size());
-    pushable.resize(slots.size());
-    meet_keys.resize(slots.size());
     std::size_t moving = 0;
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         const Slot& s = slots[i];
         positions[i] = s.body.position;
-        pushable[i] = detail::pushability(s.body);
-        meet_keys[i] = detail::meet_key(s.body, id_of(i));
         if (!s.alive || s.proxy < 0 || s.body.kind == BodyKind::bullet) continue;
         const bool moves = detail::is_moving_kind(s.body.kind);
         grid_items.push_back({broadphase.fat_bounds(s.proxy), i, moves});
@@ -498,19 +491,20 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         // touches its corner): no response; if they go on into each other, the next step
         // has a real normal.
         if (c->corner) continue;
-        const EntityDesc& ba = slots[c->pair.a].body;
-        const EntityDesc& bb = slots[c->pair.b].body;
+        const BodyState& sa = states[c->pair.a];
+        const BodyState& sb = states[c->pair.b];
         const Vec2 n = c->manifold.normal;
-        const float vn = dot(detail::contact_velocity(bb) - detail::contact_velocity(ba), n);
+        const float vn = dot(contact_velocity(sb) - contact_velocity(sa), n);
         float target = 0.0f;
         if (c->separation > 0.0f) {
             target = -c->separation / dt;  // may close the gap in the next step, no more
         } else if (vn < -desc.restitution_threshold) {
-            target = -mixed_restitution(ba, bb) * vn;
+            target = -mixed_restitution(sa.restitution, sb.restitution) * vn;
         }
-        vcs.push_back(velocity_contact(c->pair.a, ba, c->pair.b, bb, n, target));
+        vcs.push_back(velocity_contact(c->pair.a, sa, c->pair.b, sb, n, target));
     }
-    solve_velocities(slots, level, vcs, desc.velocity_passes);
+    solve_velocities(states, level, vcs, desc.velocity_passes);
+    for (const VelocityContact& vc : vcs) slots[vc.a].body.velocity = states[vc.a].velocity, slots[vc.b].body.velocity = states[vc.b].velocity;
 
     // What friction took from the tangential velocity is taken from this step's motion too
     // (semi-implicit Euler), so a body that friction stops does not slide on for a step.
@@ -521,11 +515,12 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     std::vector<std::uint8_t> moved(slots.size(), 0);
     for (const NarrowContact* c : contacts_in) {
         for (std::uint32_t i : {c->pair.a, c->pair.b}) {
+            Vec2& friction_dv = states[i].friction_dv;
+            if ((friction_dv.x == 0.0f && friction_dv.y == 0.0f) || slots[i].fast) continue;
             Slot& s = slots[i];
-            if (s.fast || (s.friction_dv.x == 0.0f && s.friction_dv.y == 0.0f)) continue;
             const Vec2 before = s.body.position;
-            s.body.position += dt * s.friction_dv;
-            s.friction_dv = {};  // once per body
+            s.body.position += dt * friction_dv;
+            friction_dv = {};  // once per body
             moves[i] = {s.body.position, s.body.position - before};
             moved[i] = 1;
         }

@@ -121,7 +121,6 @@ void World::Impl::remove(std::uint32_t index) {
     s.turned_valid = false;
     placements[index] = {};
     s.fast = false;
-    s.friction_dv = {};
     free_slots.push_back(index);
     --live;
     std::erase_if(contacts, [&](const Contact& c) { return c.a == id || c.b == id; });
