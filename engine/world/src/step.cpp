@@ -232,7 +232,7 @@ void solve_velocity(std::vector<BodyState>& motion, VelocityContact& vc, bool sh
     BodyState& sb = motion[vc.b];
     const Vec2 n = vc.normal;
     const float vn = dot(contact_velocity(sb) - contact_velocity(sa), n);
-    const float total = max0(vc.normal_impulse + (vc.target - vn) / (ima + imb));
+    const float total = max0(vc.normal_impulse + (vc.target - vn) * inv_k);
     const float dn = total - vc.normal_impulse;
     vc.normal_impulse = total;
     sa.velocity -= (ima * dn) * n;
@@ -241,7 +241,7 @@ void solve_velocity(std::vector<BodyState>& motion, VelocityContact& vc, bool sh
     const Vec2 t = perp(n);
     const float vt = dot(contact_velocity(sb) - contact_velocity(sa), t);
     const float limit = vc.friction * vc.normal_impulse;
-    const float total_t = std::clamp(vc.tangent_impulse - vt / (ima + imb), -limit, limit);
+    const float total_t = std::clamp(vc.tangent_impulse - vt * inv_k, -limit, limit);
     const float dt_impulse = total_t - vc.tangent_impulse;
     vc.tangent_impulse = total_t;
     const Vec2 dva = -(ima * dt_impulse) * t;
