@@ -53,6 +53,15 @@ struct BodyState {
     bool still = false;         // a static body: contacts see it at rest
 };
 
+// What the candidate-pair loops (broadphase filter, narrowphase, resolve) read of a body
+// for every pair before anything else, in one place: the other body of a pair is anywhere
+// in memory, so each array read there costs a cache miss.
+struct PairBody {
+    Aabb box;               // placement's bounds at the broadphase (bodies with a proxy)
+    float pushable = 0.0f;  // pushability(body)
+    std::uint32_t generation = 0;
+};
+
 // A body's position during resolve's passes, and how far it moved since the narrowphase.
 struct Moving {
     Vec2 position;
@@ -130,10 +139,9 @@ struct World::Impl {
     // EntityDesc spans several cache lines, and there are tens of thousands of pairs).
     // Filled by integrate:
     std::vector<detail::BodyState> states;
-    std::vector<float> pushable;             // detail::pushability(body)
+    std::vector<detail::PairBody> pair_bodies;  // pushable, generation; box by broadphase_pairs
     std::vector<detail::MeetKey> meet_keys;  // detail::meet_key(body, id)
     // and by broadphase_pairs, for the narrowphase and resolve:
-    std::vector<Aabb> boxes;               // placement(i).box (live bodies with a proxy)
     std::vector<Vec2> positions;           // body.position (every slot)
     // The slots whose fat bounds changed (proxy made, re-fattened or dropped) since the
     // step's broadphase: with the candidate pairs, all a fast circle's sweep can meet.

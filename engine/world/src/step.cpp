@@ -285,7 +285,7 @@ void World::Impl::integrate(float dt) {
     // instead of a few cache misses a pair): state (with the working copy of the velocity,
     // from here to the end of resolve), pushability and filter keys.
     states.resize(slots.size());
-    pushable.resize(slots.size());
+    pair_bodies.resize(slots.size());
     meet_keys.resize(slots.size());
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         Slot& s = slots[i];
@@ -294,7 +294,8 @@ void World::Impl::integrate(float dt) {
         if (s.alive && b.kind == BodyKind::dynamic) b.velocity += (b.gravity_scale * dt) * desc.gravity;
         states[i] = {b.velocity, {}, detail::resolution_inverse_mass(b), b.friction, b.restitution,
                      b.kind == BodyKind::static_body};
-        pushable[i] = detail::pushability(b);
+        pair_bodies[i].pushable = detail::pushability(b);
+        pair_bodies[i].generation = s.generation;
         meet_keys[i] = detail::meet_key(b, id_of(i));
     }
     // Bodies resting on something keep resting: the contacts carried from the last step take
@@ -305,7 +306,7 @@ void World::Impl::integrate(float dt) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
     for (const Contact& c : contacts) {
         const std::uint32_t a = c.a.index, b = c.b.index;
-        if (c.trigger || c.corner || !detail::resolvable(pushable[a], pushable[b]) ||
+        if (c.trigger || c.corner || !detail::resolvable(pair_bodies[a].pushable, pair_bodies[b].pushable) ||
             !detail::may_meet(meet_keys[a], meet_keys[b])) {
             continue;
         }
@@ -356,7 +357,6 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
     // same pairs either way (tests/world/pair_grid_test.cpp).
     grid_items.clear();
     refattened.clear();  // the pairs below are over the fat bounds as they are now
-    boxes.resize(slots.size());
     positions.resize(slots.size());
     std::size_t moving = 0;
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
@@ -366,7 +366,7 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
         const bool moves = detail::is_moving_kind(s.body.kind);
         grid_items.push_back({broadphase.fat_bounds(s.proxy), i, moves});
         moving += moves ? 1 : 0;
-        boxes[i] = placement(i).box;  // for the narrowphase and resolve
+        pair_bodies[i].box = placement(i).box;  // for the narrowphase and resolve
     }
     grid_pairs.clear();
     if (moving * 16 < grid_items.size()) {
@@ -394,7 +394,7 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
     std::vector<Pair> pairs;
     pairs.reserve(grid_pairs.size());
     for (const detail::GridPair& g : grid_pairs) {
-        if (pushable[g.a] < 0.0f && pushable[g.b] < 0.0f) continue;  // two triggers
+        if (pair_bodies[g.a].pushable < 0.0f && pair_bodies[g.b].pushable < 0.0f) continue;  // two triggers
         if (!detail::may_meet(meet_keys[g.a], meet_keys[g.b])) continue;
         pairs.push_back({g.a, g.b});
     }
@@ -421,17 +421,22 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
                                                                                                     : nullptr;
     };
     for (const Pair& p : pairs) {
-        const bool trigger = pushable[p.a] < 0.0f || pushable[p.b] < 0.0f;
+        const detail::PairBody& ba = pair_bodies[p.a];
+        const detail::PairBody& bb = pair_bodies[p.b];
+        const bool trigger = ba.pushable < 0.0f || bb.pushable < 0.0f;
         // Bounds first: cheap, and for masks it is the lecture's first test (09-30). The
-        // packed boxes turn most candidates away without reading their placements.
+        // packed boxes turn most candidates away without reading their placements: they are
+        // the placements' bounds, usable (finite and in order: a body has a proxy), so
+        // touching is exactly overlaps(pa.box, pb.box).
         // The broadphase placed every body and nothing has moved since, so the placements
         // are read directly (checking them against the bodies would be a cache miss each).
         Manifold m;
         const detail::Placement& pa = placements[p.a];
         const detail::Placement& pb = placements[p.b];
-        if (touch(boxes[p.a], boxes[p.b])) {
+        if (touch(ba.box, bb.box)) {
             JOSTLE_DEBUG_ASSERT(placement_current(p.a) && placement_current(p.b), "a stale placement in the narrowphase");
-            if (overlaps(pa.box, pb.box)) m = collide(pa.shape, pb.shape);
+            JOSTLE_DEBUG_ASSERT(overlaps(pa.box, pb.box), "packed bounds that touch and placements' that do not");
+            m = collide(pa.shape, pb.shape);
         }
         if (m.hit) {
             found.push_back({p, m, 0.0f, trigger, detail::corner_touch(pa.shape, pb.shape, m)});
@@ -442,8 +447,8 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
         // kSpeculative shows how far apart they are. Without this a resting stack loses a
         // contact whenever rounding opens a 1e-5 px gap, and the body above falls through
         // a step of gravity.
-        if (trigger || !detail::resolvable(pushable[p.a], pushable[p.b])) continue;
-        const Contact* last = last_step(meet_keys[p.a].id, meet_keys[p.b].id);
+        if (trigger || !detail::resolvable(ba.pushable, bb.pushable)) continue;
+        const Contact* last = last_step({p.a, ba.generation}, {p.b, bb.generation});
         if (last == nullptr) continue;
         constexpr float kSpeculative = 1.0f;  // px
         const Shape b_back = placed_at(p.b, slots[p.b].body.position - kSpeculative * last->normal);
@@ -463,8 +468,10 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
 void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::vector<Pair>& pairs, float dt) {
     // From the packed pushabilities (broadphase_pairs): a trigger's -1 is inverse mass 0.
     std::vector<float> inverse_mass(slots.size());
-    for (std::size_t i = 0; i < slots.size(); ++i) inverse_mass[i] = max0(pushable[i]);
-    const auto resolvable = [&](const Pair& p) { return detail::resolvable(pushable[p.a], pushable[p.b]); };
+    for (std::size_t i = 0; i < slots.size(); ++i) inverse_mass[i] = max0(pair_bodies[i].pushable);
+    const auto resolvable = [&](const Pair& p) {
+        return detail::resolvable(pair_bodies[p.a].pushable, pair_bodies[p.b].pushable);
+    };
     std::vector<const NarrowContact*> contacts_in;
     for (const NarrowContact& c : found) {
         if (resolvable(c.pair)) contacts_in.push_back(&c);
@@ -680,7 +687,10 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         if (!apart[k]) return false;
         const Pair& p = push_pairs[k];
         if (!(moved[p.a] | moved[p.b])) return false;
-        if (!touch_moved(boxes[p.a], moves[p.a].moved_by, boxes[p.b], moves[p.b].moved_by, kBoundsMargin)) return false;
+        if (!touch_moved(pair_bodies[p.a].box, moves[p.a].moved_by, pair_bodies[p.b].box, moves[p.b].moved_by,
+                         kBoundsMargin)) {
+            return false;
+        }
         const Shape sa = placed_at(p.a, moves[p.a].position);
         const Shape sb = placed_at(p.b, moves[p.b].position);
         const Manifold m = collide(sa, sb);
