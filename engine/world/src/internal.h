@@ -45,7 +45,7 @@ struct Placement {
 // integrate (an EntityDesc spans several cache lines; a step reads thousands of pairs). The
 // velocity is the step's working copy from integrate to the end of resolve.
 struct BodyState {
-    Vec2 velocity;
+    Vec2 velocity;              // as contacts see it: zero for a static body (whose own is kept)
     Vec2 friction_dv;           // velocity change from friction impulses (within a solve)
     float inverse_mass = 0.0f;  // resolution_inverse_mass
     float friction = 0.0f;

@@ -218,8 +218,6 @@ VelocityContact velocity_contact(std::uint32_t a, const BodyState& sa, std::uint
     return {a, b, normal, target, mixed_friction(sa.friction, sb.friction), sa.inverse_mass, sb.inverse_mass};
 }
 
-Vec2 contact_velocity(const BodyState& m) { return detail::contact_velocity(m.velocity, m.still); }
-
 VelocityContact::Masses masses_of(float ima, float imb) {
     const float k = ima + imb;
     return {ima, imb, k > 0.0f ? 1.0f / k : 0.0f};
@@ -231,7 +229,7 @@ void solve_velocity(std::vector<BodyState>& motion, VelocityContact& vc, bool sh
     BodyState& sa = motion[vc.a];
     BodyState& sb = motion[vc.b];
     const Vec2 n = vc.normal;
-    const float vn = dot(contact_velocity(sb) - contact_velocity(sa), n);
+    const float vn = dot(sb.velocity - sa.velocity, n);
     const float total = max0(vc.normal_impulse + (vc.target - vn) * inv_k);
     const float dn = total - vc.normal_impulse;
     vc.normal_impulse = total;
@@ -239,7 +237,7 @@ void solve_velocity(std::vector<BodyState>& motion, VelocityContact& vc, bool sh
     sb.velocity += (imb * dn) * n;
     // Friction along the tangent, bounded by the normal impulse (Coulomb).
     const Vec2 t = perp(n);
-    const float vt = dot(contact_velocity(sb) - contact_velocity(sa), t);
+    const float vt = dot(sb.velocity - sa.velocity, t);
     const float limit = vc.friction * vc.normal_impulse;
     const float total_t = std::clamp(vc.tangent_impulse - vt * inv_k, -limit, limit);
     const float dt_impulse = total_t - vc.tangent_impulse;
@@ -292,8 +290,9 @@ void World::Impl::integrate(float dt) {
         EntityDesc& b = s.body;
         s.fast = false;
         if (s.alive && b.kind == BodyKind::dynamic) b.velocity += (b.gravity_scale * dt) * desc.gravity;
-        states[i] = {b.velocity, {}, detail::resolution_inverse_mass(b), b.friction, b.restitution,
-                     b.kind == BodyKind::static_body};
+        const bool still = b.kind == BodyKind::static_body;
+        states[i] = {detail::contact_velocity(b.velocity, still), {}, detail::resolution_inverse_mass(b), b.friction,
+                     b.restitution, still};
         pair_bodies[i].pushable = detail::pushability(b);
         pair_bodies[i].generation = s.generation;
         meet_keys[i] = detail::meet_key(b, id_of(i));
@@ -324,9 +323,10 @@ void World::Impl::integrate(float dt) {
         Slot& s = slots[i];
         if (!s.alive) continue;
         EntityDesc& b = s.body;
-        b.velocity = states[i].velocity;
-        // Bullets move along their path in the sweeps phase; static bodies never move.
+        // Bullets move along their path in the sweeps phase; static bodies never move (and
+        // keep their velocity field, which contacts read as zero).
         if (b.kind == BodyKind::static_body) continue;
+        b.velocity = states[i].velocity;
         const float angle = wrap_angle(b.angle + b.angular_velocity * dt);
         if (std::bit_cast<std::uint32_t>(angle) != std::bit_cast<std::uint32_t>(b.angle)) {
             b.angle = angle;
@@ -501,7 +501,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         const BodyState& sa = states[c->pair.a];
         const BodyState& sb = states[c->pair.b];
         const Vec2 n = c->manifold.normal;
-        const float vn = dot(contact_velocity(sb) - contact_velocity(sa), n);
+        const float vn = dot(sb.velocity - sa.velocity, n);
         float target = 0.0f;
         if (c->separation > 0.0f) {
             target = -c->separation / dt;  // may close the gap in the next step, no more
@@ -511,7 +511,11 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
         vcs.push_back(velocity_contact(c->pair.a, sa, c->pair.b, sb, n, target));
     }
     solve_velocities(states, level, vcs, desc.velocity_passes);
-    for (const VelocityContact& vc : vcs) slots[vc.a].body.velocity = states[vc.a].velocity, slots[vc.b].body.velocity = states[vc.b].velocity;
+    for (const VelocityContact& vc : vcs) {
+        for (const std::uint32_t i : {vc.a, vc.b}) {
+            if (!states[i].still) slots[i].body.velocity = states[i].velocity;
+        }
+    }
 
     // What friction took from the tangential velocity is taken from this step's motion too
     // (semi-implicit Euler), so a body that friction stops does not slide on for a step.
