@@ -651,11 +651,15 @@ template <int kS>
     return _mm512_test_epi64_mask(w, tail) != 0;
 }
 
-// The first vector's lanes: the shared chunks of the rows that exist. Without a branch: most
-// queries end with this vector (sprites at random offsets mostly share a pixel in their first
-// few shared rows), so that one branch on the data, well predicted, then decides.
-[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline unsigned first_lanes(const PackedRows& v) {
-    return pick_le(v.words, 7, v.lanes & _bzhi_u32(0xffu, static_cast<unsigned>(v.words)), v.lanes);
+// The first vector's lanes: the shared chunks of the rows that exist. Lane i's row, i / kS,
+// compared with the shared rows' count in a vector: two instructions for any count, and no
+// branch (most queries end with this vector: sprites at random offsets mostly share a pixel in
+// their first few shared rows).
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __mmask8 first_lanes(const SharedWords& s, const PackedRows& v) {
+    const __m512i row_of_lane = _mm512_srli_epi64(_mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0), std::countr_zero(unsigned{kS}));
+    const __mmask8 lanes = kS == 1 ? 0xff : static_cast<__mmask8>(v.lanes);
+    return _mm512_mask_cmplt_epi64_mask(lanes, row_of_lane, _mm512_set1_epi64(s.rows));
 }
 
 // The first vector, P AND the joined O, read without a load mask: 8 words (and the one after
@@ -676,39 +680,41 @@ template <int kS>
     const PackedRows v = packed_rows<kS>(s);
     const __m512i tail = packed_tail<kS>(s, v);
     const __m512i shift = _mm512_set1_epi64(s.shift);
-    if (_mm512_mask_test_epi64_mask(static_cast<__mmask8>(first_lanes(v)), first_and(s, shift), tail) != 0) return true;
+    if (_mm512_mask_test_epi64_mask(first_lanes<kS>(s, v), first_and(s, shift), tail) != 0) return true;
     int at = 8;
     for (; at + 8 < v.words; at += 8)
         if (any_lane(packed_and(s, shift, at, v.lanes), tail)) return true;
     return at < v.words && any_lane(packed_and(s, shift, at, last_lanes(v, at)), tail);
 }
 
-// The first shared pixel of vector w at `at` whose lanes with a shared pixel are `hit`; row -1
-// when hit is 0. The lowest set bit of a lane with a shared pixel is one: the tail keeps a
-// chunk's low bits.
+// The first shared pixel of vector w at `at` whose lanes with a shared pixel are `hit`, as
+// first_overlap's answer (none when hit is 0, without a branch). The lowest set bit of a lane
+// with a shared pixel is one: the tail keeps a chunk's low bits.
 template <int kS>
-[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline Offset first_in_vector(__m512i w, unsigned hit, int at) {
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline FirstPixel first_in_vector(const SharedWords& s, __m512i w,
+                                                                                     unsigned hit, int at) {
     const int word = at + std::countr_zero(hit);  // in the shared rows
-    const __m512i first = _mm512_maskz_compress_epi64(static_cast<__mmask8>(hit & (0u - hit)), w);  // to lane 0
+    const __m512i first = _mm512_maskz_compress_epi64(static_cast<__mmask8>(_blsi_u32(hit)), w);  // to lane 0
     const int col = 64 * (word % kS) + std::countr_zero(static_cast<u64>(first[0]));
-    return {col, pick_le(static_cast<int>(hit), 0, -1, word / kS)};
+    const auto x = static_cast<std::uint32_t>(s.x0 + col), y = static_cast<std::uint32_t>(s.y0 + word / kS);
+    return {x | u64{y} << 32, hit != 0};
 }
 
 template <int kS>
-[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline Offset first_packed(const SharedWords& s) {
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline FirstPixel first_packed(const SharedWords& s) {
     const PackedRows v = packed_rows<kS>(s);
     const __m512i tail = packed_tail<kS>(s, v);
     const __m512i shift = _mm512_set1_epi64(s.shift);
     const __m512i w0 = first_and(s, shift);
-    const unsigned hit0 = _mm512_mask_test_epi64_mask(static_cast<__mmask8>(first_lanes(v)), w0, tail);
-    if (hit0 != 0 || v.words <= 8) return first_in_vector<kS>(w0, hit0, 0);
+    const unsigned hit0 = _mm512_mask_test_epi64_mask(first_lanes<kS>(s, v), w0, tail);
+    if (hit0 != 0 || v.words <= 8) return first_in_vector<kS>(s, w0, hit0, 0);
     int at = 8;
     for (; at + 8 < v.words; at += 8) {
         const __m512i w = packed_and(s, shift, at, v.lanes);
-        if (const unsigned hit = _mm512_test_epi64_mask(w, tail); hit != 0) return first_in_vector<kS>(w, hit, at);
+        if (const unsigned hit = _mm512_test_epi64_mask(w, tail); hit != 0) return first_in_vector<kS>(s, w, hit, at);
     }
     const __m512i w = packed_and(s, shift, at, last_lanes(v, at));
-    return first_in_vector<kS>(w, _mm512_test_epi64_mask(w, tail), at);
+    return first_in_vector<kS>(s, w, _mm512_test_epi64_mask(w, tail), at);
 }
 
 template <int kS>
@@ -716,7 +722,7 @@ template <int kS>
     const PackedRows v = packed_rows<kS>(s);
     const __m512i tail = packed_tail<kS>(s, v);
     const __m512i shift = _mm512_set1_epi64(s.shift);
-    __m512i sum = _mm512_popcnt_epi64(_mm512_maskz_and_epi64(static_cast<__mmask8>(first_lanes(v)), first_and(s, shift), tail));
+    __m512i sum = _mm512_popcnt_epi64(_mm512_maskz_and_epi64(first_lanes<kS>(s, v), first_and(s, shift), tail));
     int at = 8;
     for (; at + 8 < v.words; at += 8)
         sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(_mm512_and_si512(packed_and(s, shift, at, v.lanes), tail)));
@@ -846,7 +852,7 @@ template <int kS>
 template <int kS>
 [[gnu::target(JOSTLE_AVX512)]] FirstPixel first_vector_packed(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
-    return first_pixel(s, share_words<kS>(a, b, s) ? first_packed<kS>(s) : kNone);
+    return share_words<kS>(a, b, s) ? first_packed<kS>(s) : FirstPixel{0, 0};
 }
 template <int kS>
 [[gnu::target(JOSTLE_AVX512)]] int count_vector_packed(const PlacedMask& a, const PlacedMask& b) {
