@@ -603,8 +603,9 @@ template <int kP, int kO>
 // Rows of two masks with the same stride of kS = 1, 2, 4 or 8 words (up to 64, 128, 256 or
 // 512 wide), 8 / kS rows per vector, whatever the shared width: such rows lie kS words apart in
 // both masks, so vector v is the 8 words from 8 * v on in each, and lane i * kS + c is chunk c
-// of the vector's row i (lanes past a row's chunks, or past the last row, are masked off and
-// never read). Lanes run in reading order. One code path for every offset of the pair: a
+// of the vector's row i (lanes past a row's chunks, or past the last row, are masked off: not
+// read, but for the first vector's, which are read and left out of its test; see first_and).
+// Lanes run in reading order. One code path for every offset of the pair: a
 // branch on the shared width would be mispredicted on about half the queries (it is random
 // from pair to pair).
 struct PackedRows {
