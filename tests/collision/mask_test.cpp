@@ -553,6 +553,74 @@ TEST(MaskDifferential, EqualStridesInEveryKernel) {
     }
 }
 
+// Every kernel against reference:: on one pair at one offset, both orders.
+void expect_kernels_agree(const PlacedMask& pa, const PlacedMask& pb, const std::string& where) {
+    using detail::MaskKernel;
+    const int count = reference::count_overlap(pa, pb);
+    const std::optional<Pixel> first = reference::first_overlap(pa, pb);
+    for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx512}) {
+        const std::string at = where + " kernel " + std::to_string(static_cast<int>(k));
+        ASSERT_EQ(detail::overlaps(pa, pb, k), count > 0) << at;
+        ASSERT_EQ(detail::overlaps(pb, pa, k), count > 0) << at;
+        ASSERT_EQ(detail::first_overlap(pa, pb, k), first) << at;
+        ASSERT_EQ(detail::first_overlap(pb, pa, k), first) << at;
+        ASSERT_EQ(detail::count_overlap(pa, pb, k), count) << at;
+    }
+}
+
+// Pixels where (x + y) is even (parity 0) or odd, counted in world pixels from the mask's
+// placement: two such masks of different parity never share a pixel, so a read of the wrong
+// word, row or lane (a neighbouring column, the next row) would find one.
+Mask checkerboard(int w, int h, int x, int y, int parity) {
+    Mask m(w, h);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i)
+            if (((x + i + y + j) & 1) == parity) m.set(i, j, true);
+    return m;
+}
+
+// Two masks of the same words per row, 1..8 (the AVX-512 kernel packs 8 / stride rows a vector
+// for strides 1, 2, 4 and 8 and reads the first vector without a load mask, up into the clear
+// words after a mask's last row), at x offsets across the whole width and word boundaries, with
+// 1..9 shared rows that end at a mask's last row or start at its first: random masks, sparse
+// or dense, and checkerboards that never share a pixel.
+TEST(MaskDifferential, SameStridesAtEveryAlignmentDownToTheLastRow) {
+    Rng rng(0x70616464ull);
+    int hits = 0;
+    int cases = 0;
+    for (int stride = 1; stride <= 8; ++stride) {
+        for (int n = 0; n < 8; ++n) {
+            const int wa = n == 0 ? 64 * stride : uniform_int(rng, 64 * stride - 63, 64 * stride);
+            const int wb = n == 1 ? 64 * stride - 63 : uniform_int(rng, 64 * stride - 63, 64 * stride);
+            const int ha = uniform_int(rng, 1, 20);
+            const int hb = uniform_int(rng, 1, 20);
+            // B's last `rows` rows under A's first ones, or A's last under B's first.
+            const int rows = uniform_int(rng, 1, std::min(9, std::min(ha, hb)));
+            const int by = n % 2 == 0 ? rows - hb : ha - rows;
+            const int step = stride <= 2 ? 1 : 7;  // every alignment in 64 steps of 7
+            for (int dx = -wb + 1; dx < wa; dx += dx < -wb + 66 || dx > wa - 66 ? 1 : step) {
+                const std::string where = "stride " + std::to_string(stride) + " case " + std::to_string(n) +
+                                          " dx " + std::to_string(dx);
+                const int base = uniform_int(rng, -200, 200);
+                if (n % 4 == 3) {
+                    const Mask a = checkerboard(wa, ha, base, 0, 0);
+                    const Mask b = checkerboard(wb, hb, base + dx, by, 1);
+                    expect_kernels_agree({&a, base, 0}, {&b, base + dx, by}, where + " checkerboard");
+                    ASSERT_FALSE(overlaps(PlacedMask{&a, base, 0}, PlacedMask{&b, base + dx, by})) << where;
+                } else {
+                    const Mask a = random_mask(rng, wa, ha, n % 4 == 0 ? 95 : 0);
+                    const Mask b = random_mask(rng, wb, hb, n % 4 == 0 ? 95 : 0);
+                    expect_kernels_agree({&a, base, 0}, {&b, base + dx, by}, where);
+                    hits += overlaps(PlacedMask{&a, base, 0}, PlacedMask{&b, base + dx, by});
+                }
+                ++cases;
+            }
+        }
+    }
+    EXPECT_GT(cases, 3000);
+    EXPECT_GT(hits, cases / 4);  // the random cases really exercise hits, not only misses
+}
+
 TEST(MaskDifferential, EmptyMasksMissInEveryKernel) {
     using detail::MaskKernel;
     const Mask full = rows_of({"###", "###"});

@@ -28,6 +28,13 @@ namespace {
 using i64 = std::int64_t;
 using u64 = std::uint64_t;
 
+// Clear words past the last row (64 bytes a mask). The mask queries read the word after a
+// row's last one (two adjacent words joined by a shift) and mask off its bits, so a row's last
+// word has a readable neighbour, the next row's first word or the first of these; and the
+// AVX-512 kernel reads 8 words (and the one after them) from a shared row's start without a
+// load mask, keeping the shared rows' count off the loads' path (it masks the test instead).
+constexpr std::size_t kPadWords = 8;
+
 bool usable(const Mask* m) { return m != nullptr && m->width() > 0 && m->height() > 0; }
 
 std::string describe_char(char ch) {
@@ -49,10 +56,7 @@ Mask::Mask(int width, int height) {
     width_ = width;
     height_ = height;
     words_per_row_ = (width + 63) / 64;
-    // One clear word past the last row: the mask queries read the word after a row's last one
-    // (two adjacent words joined by a shift) and mask off its bits, so a row's last word has a
-    // readable neighbour, the next row's first word or this one (8 bytes a mask).
-    bits_.assign(static_cast<std::size_t>(words_per_row_) * static_cast<std::size_t>(height) + 1, 0);
+    bits_.assign(static_cast<std::size_t>(words_per_row_) * static_cast<std::size_t>(height) + kPadWords, 0);
 }
 
 // An empty list gives a 0 x 0 mask and empty rows a 0-wide mask: both are valid and hit
@@ -191,19 +195,21 @@ Placed placed(const PlacedMask& p) { return {p.mask, p.x, p.y}; }
 // i); the 64 pixels of the other, "O", under it are two adjacent O words joined by a shift
 // that is the same for every chunk of every row. The last chunk of a row is ANDed with `tail`,
 // which clears the columns past the shared rectangle: there P's bits are clear (past its
-// width) and O's are its own clear bits or the next row's (or the padding word after the last
-// row, see Mask::Mask), so nothing outside a mask's storage is read and every read bit that
+// width) and O's are its own clear bits or the next row's (or the clear words after the last
+// row, see kPadWords), so nothing outside a mask's storage is read and every read bit that
 // counts lies inside both masks. The setup is a few dozen instructions: for small masks it is
 // most of a query's cost.
 struct SharedWords {
-    const u64* p;             // P's word 0 in the first shared row
-    const u64* o;             // O's word holding the column under P's column 0 there
-    std::ptrdiff_t p_stride;  // P's words per row
-    std::ptrdiff_t o_stride;  // O's words per row
-    int shift;                // that column's bit in its O word
-    int rows;                 // shared rows, >= 1
-    int words;                // chunks per shared row, >= 1
-    u64 tail;                 // the valid bits of a row's last chunk
+    const u64* p = nullptr;       // P's word 0 in the first shared row
+    const u64* o = nullptr;       // O's word holding the column under P's column 0 there
+    std::ptrdiff_t p_stride = 0;  // P's words per row
+    std::ptrdiff_t o_stride = 0;  // O's words per row
+    int shift = 0;                // that column's bit in its O word
+    int rows = 0;                 // shared rows, >= 1
+    int words = 0;                // chunks per shared row, >= 1
+    u64 tail = 0;                 // the valid bits of a row's last chunk
+    i64 x0 = 0;                   // the shared rectangle's top-left world pixel
+    i64 y0 = 0;
 };
 
 // The mask and position of a query's argument (PlacedMask) or of the MTD search's translated
@@ -211,37 +217,78 @@ struct SharedWords {
 inline const Mask* mask_of(const PlacedMask& p) { return p.mask; }
 inline const Mask* mask_of(const Placed& p) { return p.m; }
 
-// Sets s up for the pair; false when the rectangles share no pixel.
+// lhs <= rhs ? x : y as a conditional move, never a branch, for conditions that are random
+// from query to query: GCC 12 branches on a plain ?: there, whatever it is told of the odds, or
+// turns the compare into a setcc and a test.
+template <class T, class C>
+[[gnu::always_inline]] inline T pick_le(C lhs, C rhs, T x, T y) {
+#if defined(__x86_64__) && defined(__GNUC__)
+    static_assert(sizeof(T) == 8 || sizeof(T) == 4);
+    asm("cmp %3, %2\n\tcmovle %1, %0" : "+r"(y) : "r"(x), "r"(lhs), "re"(rhs) : "cc");
+    return y;
+#else
+    return lhs <= rhs ? x : y;
+#endif
+}
+
+// The rectangle two placed masks share, in each one's own pixels: A's pixel (a_col + i,
+// a_top + j) and B's pixel (b_col + i, b_top + j) are the same world pixel, for 0 <= i < width
+// and 0 <= j < rows. One of a_col and b_col is 0, and one of a_top and b_top.
+struct SharedRect {
+    i64 a_col = 0;
+    i64 a_top = 0;
+    i64 b_col = 0;
+    i64 b_top = 0;
+    i64 width = 0;
+    i64 rows = 0;
+};
+
+// Sets r up for the pair (both masks present); false when the rectangles share no pixel.
 template <class P>
+[[gnu::always_inline]] inline bool shared_rect(const P& a, const P& b, SharedRect& r) {
+    // B's offset from A in i64, which cannot overflow.
+    const i64 dx = static_cast<i64>(b.x) - static_cast<i64>(a.x);
+    const i64 dy = static_cast<i64>(b.y) - static_cast<i64>(a.y);
+    r.a_col = std::max<i64>(dx, 0);
+    r.b_col = r.a_col - dx;
+    r.a_top = std::max<i64>(dy, 0);
+    r.b_top = r.a_top - dy;
+    r.width = std::min(mask_of(a)->width() - r.a_col, mask_of(b)->width() - r.b_col);
+    r.rows = std::min(mask_of(a)->height() - r.a_top, mask_of(b)->height() - r.b_top);
+    return std::min(r.width, r.rows) > 0;  // one test and branch for both
+}
+
+// width % 64 low bits, all 64 when 0: the valid bits of a row's last chunk.
+inline u64 tail_bits(i64 width) { return ~u64{0} >> ((64 - (width & 63)) & 63); }
+
+// Sets s up for the pair (both masks present); false when the rectangles share no pixel.
+// kStride: both masks' words per row when the caller has checked that it is that (else 0).
+template <int kStride = 0, class P>
 [[gnu::always_inline]] inline bool share_words(const P& a, const P& b, SharedWords& s) {
+    SharedRect r;
+    if (!shared_rect(a, b, r)) return false;
     const Mask* const am = mask_of(a);
     const Mask* const bm = mask_of(b);
-    const auto ax = static_cast<i64>(a.x), ay = static_cast<i64>(a.y);
-    const auto bx = static_cast<i64>(b.x), by = static_cast<i64>(b.y);
-    const i64 x0 = std::max(ax, bx);
-    const i64 x1 = std::min(ax + am->width(), bx + bm->width());
-    const i64 y0 = std::max(ay, by);
-    const i64 y1 = std::min(ay + am->height(), by + bm->height());
-    if (x0 >= x1 || y0 >= y1) return false;
-    // P: the mask whose column 0 is x0 (A when a.x >= b.x). GCC makes this a branch; selects
-    // done with masks measured slower (they put the choice on the chain of dependent loads).
-    const bool a_aligned = ax >= bx;
-    const Mask* const pm = a_aligned ? am : bm;
-    const Mask* const om = a_aligned ? bm : am;
-    const i64 py = a_aligned ? ay : by;
-    const i64 ox = a_aligned ? bx : ax;
-    const i64 oy = a_aligned ? by : ay;
-    // The shared rectangle lies inside both masks, so these differences are small.
-    const int c = static_cast<int>(x0 - ox);  // O's column under P's column 0, >= 0
-    const int width = static_cast<int>(x1 - x0);
-    s.p_stride = pm->words_per_row();
-    s.o_stride = om->words_per_row();
-    s.p = pm->row(static_cast<int>(y0 - py));
-    s.o = om->row(static_cast<int>(y0 - oy)) + (c >> 6);
-    s.shift = c & 63;
-    s.rows = static_cast<int>(y1 - y0);
-    s.words = (width + 63) >> 6;
-    s.tail = ~u64{0} >> ((64 - (width & 63)) & 63);  // width % 64 low bits; all 64 when 0
+    const i64 a_stride = kStride != 0 ? kStride : am->words_per_row();
+    const i64 b_stride = kStride != 0 ? kStride : bm->words_per_row();
+    const u64* const a_row = am->row(0) + r.a_top * a_stride;
+    const u64* const b_row = bm->row(0) + r.b_top * b_stride;
+    // P: the mask whose column 0 is the shared rectangle's (A when its a_col is 0). Which one
+    // it is is random from pair to pair, so it is chosen by selects once both masks' rows are
+    // found: a branch there is mispredicted on half the queries, which costs more than a small
+    // query's work.
+    const i64 c = r.a_col + r.b_col;  // O's column under P's column 0
+    s.p_stride = kStride != 0 ? kStride : pick_le(r.a_col, i64{0}, a_stride, b_stride);
+    s.o_stride = kStride != 0 ? kStride : pick_le(r.a_col, i64{0}, b_stride, a_stride);
+    s.p = pick_le(r.a_col, i64{0}, a_row, b_row);
+    // With one word a row, c < 64 (the rectangle lies inside both masks).
+    s.o = pick_le(r.a_col, i64{0}, b_row, a_row) + (kStride == 1 ? 0 : c >> 6);
+    s.shift = static_cast<int>(c & 63);
+    s.x0 = a.x + r.a_col;
+    s.y0 = a.y + r.a_top;
+    s.rows = static_cast<int>(r.rows);
+    s.words = kStride == 1 ? 1 : static_cast<int>((r.width + 63) >> 6);
+    s.tail = tail_bits(r.width);
     return true;
 }
 
@@ -339,6 +386,41 @@ struct Offset {
 };
 constexpr Offset kNone{0, -1};
 
+// A kernel's first_overlap answer, in two registers: the world pixel's x in the low half of xy
+// and y in the high half, found 0 or 1. (A kernel compiled for AVX-512 that builds a
+// std::optional<Pixel> itself gets its stack aligned to 64 bytes in its prologue by GCC 12, on
+// every query.)
+struct FirstPixel {
+    u64 xy;
+    u64 found;
+};
+
+// The world pixel at `at` in a shared rectangle whose top-left is world (x0, y0), or none.
+[[gnu::always_inline]] inline FirstPixel first_pixel(i64 x0, i64 y0, Offset at) {
+    const auto x = static_cast<std::uint32_t>(x0 + at.col), y = static_cast<std::uint32_t>(y0 + at.row);
+    return {x | u64{y} << 32, at.found() ? 1u : 0u};
+}
+[[gnu::always_inline]] inline FirstPixel first_pixel(const SharedWords& s, Offset at) { return first_pixel(s.x0, s.y0, at); }
+
+// first_overlap's result, made from its bytes where the layout is known (libstdc++ keeps the
+// Pixel, then the engaged flag; the tests compare every answer with reference::'s): GCC 12
+// builds a std::optional<Pixel> made the usual way on the stack and reads it back with loads
+// wider than its stores, a store-forwarding stall on every answer, while these bytes come
+// back in two registers.
+inline std::optional<Pixel> to_optional(FirstPixel p) {
+#if defined(__GLIBCXX__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    struct [[gnu::packed]] Bytes {
+        u64 xy;
+        std::uint32_t engaged;
+    };
+    static_assert(sizeof(Bytes) == sizeof(std::optional<Pixel>));
+    return std::bit_cast<std::optional<Pixel>>(Bytes{p.xy, static_cast<std::uint32_t>(p.found)});
+#else
+    if (p.found == 0) return std::nullopt;
+    return Pixel{static_cast<int>(static_cast<std::uint32_t>(p.xy)), static_cast<int>(static_cast<std::uint32_t>(p.xy >> 32))};
+#endif
+}
+
 // The first shared pixel of row r, known to have one.
 template <bool kOneWord>
 [[gnu::always_inline]] inline Offset first_in_row(const SharedWords& s, int r) {
@@ -397,19 +479,20 @@ Offset last_row_first_shared(const SharedWords& s) {
 //   portable  baseline x86-64 (or any other machine): std::popcount is a libgcc call there
 //   bmi2      POPCNT, TZCNT and BMI2's shifts by any register (the join's two shifts need no
 //             shuffling through CL)
-//   avx512    bmi2, and rows of 2..8 chunks as one vector each: VPSHRDVQ joins 8 word pairs in
-//             one instruction (VBMI2), VPOPCNTQ counts them. Rows of one chunk stay scalar (a
-//             gather of 8 such rows measured slower), and the setup stays in bmi2 code: the
-//             vector code's frame costs more than a small query's work.
+//   avx512    bmi2, and VPSHRDVQ (VBMI2) joining 8 word pairs in one instruction, VPOPCNTQ
+//             counting them: 8 / stride rows a vector for two masks of the same 1, 2, 4 or 8
+//             words per row, else 8 one-chunk rows or one row of 2..8 chunks a vector.
 // Each kernel is a whole query, from the setup to the answer, so that the shared words stay in
-// registers: a query on small masks is mostly setup.
+// registers: a query on small masks is mostly setup. A query is issue-bound (about 6
+// instructions a cycle on the machines measured), so instructions count, and a branch on the
+// data costs a pipeline refill whenever it is mispredicted.
 
 using MaskKernel = detail::MaskKernel;
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define JOSTLE_MASK_X86_KERNELS 1
 #define JOSTLE_BMI2 "popcnt,bmi,bmi2"
-#define JOSTLE_AVX512 "popcnt,bmi,bmi2,avx2,avx512f,avx512vl,avx512bw,avx512vpopcntdq,avx512vbmi2"
+#define JOSTLE_AVX512 "popcnt,bmi,bmi2,avx2,avx512f,avx512vl,avx512bw,avx512dq,avx512vpopcntdq,avx512vbmi2"
 
 // A shared row of 2..8 chunks as one vector: lane i is chunk i (lanes past the row are 0).
 struct RowVectors {
@@ -456,7 +539,7 @@ struct RowVectors {
 // lane k is row r + k's chunk, tail applied, 0 past the last row. A stride-1 mask's 8 words
 // are one load; a stride-2 mask's 16 words are two, split into even and odd lanes by one
 // permute each. O's word after a row's chunk word is the next word in memory at both strides
-// (the padding word after the last row included), so the same loads give it. Masked loads
+// (the clear words after the last row included), so the same loads give it. Masked loads
 // read only the lanes they keep: never past rows r .. s.rows - 1 (and their following word).
 template <int kPStride, int kOStride>
 [[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i eight_rows(const SharedWords& s, int r,
@@ -490,7 +573,8 @@ template <int kPStride, int kOStride>
     return _mm512_and_si512(_mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, shift)), tail);
 }
 
-// 4 * P's stride + O's stride when both are 1 or 2 words (5, 6, 9, 10), else 0.
+// 4 * P's stride + O's stride when both are 1 or 2 words (6 and 9: different strides; equal
+// ones are packed), else 0.
 inline int stride_pair(const SharedWords& s) {
     return s.p_stride <= 2 && s.o_stride <= 2 ? static_cast<int>(4 * s.p_stride + s.o_stride) : 0;
 }
@@ -516,78 +600,135 @@ template <int kP, int kO>
     return lane_sum(sum);
 }
 
-// Rows of two masks with the same stride of kS = 2 or 4 words (up to 128 or 256 wide), 8 / kS
-// rows per vector: such rows lie kS words apart in both masks, so one load of 8 words holds
-// 8 / kS rows, and lane i * kS + c is chunk c of row r + i (lanes past a row's chunks, or past
-// the last row, are masked off and never read). Lanes run in reading order.
+// Rows of two masks with the same stride of kS = 1, 2, 4 or 8 words (up to 64, 128, 256 or
+// 512 wide), 8 / kS rows per vector, whatever the shared width: such rows lie kS words apart in
+// both masks, so vector v is the 8 words from 8 * v on in each, and lane i * kS + c is chunk c
+// of the vector's row i (lanes past a row's chunks, or past the last row, are masked off: not
+// read, but for the first vector's, which are read and left out of its test; see first_and).
+// Lanes run in reading order. One code path for every offset of the pair: a
+// branch on the shared width would be mispredicted on about half the queries (it is random
+// from pair to pair).
 struct PackedRows {
-    unsigned lanes;  // the chunks of 8 / kS rows
-    __m512i tail;    // s.tail in each row's last chunk, ~0 elsewhere
-    __m512i shift;
+    unsigned lanes;  // the shared chunks among a vector's rows
+    unsigned last;   // each row's last chunk among them
+    int words;       // the shared rows' words: rows * kS
 };
+// (The vectors are kept out of the struct: a local with a 64-byte member makes GCC 12 align
+// the stack in the kernel's prologue even when nothing is spilled.)
 
 template <int kS>
 [[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline PackedRows packed_rows(const SharedWords& s) {
-    const unsigned row = (1u << s.words) - 1u;  // s.words <= kS: the shared width fits in both
-    unsigned lanes = 0;
-    unsigned last = 0;
-    for (int i = 0; i < 8 / kS; ++i) {
-        lanes |= row << (i * kS);
-        last |= 1u << (i * kS + s.words - 1);
-    }
-    return {lanes, _mm512_mask_set1_epi64(_mm512_set1_epi64(-1), static_cast<__mmask8>(last), static_cast<long long>(s.tail)),
-            _mm512_set1_epi64(s.shift)};
+    static_assert(kS == 1 || kS == 2 || kS == 4 || kS == 8);
+    constexpr unsigned row_starts = kS == 1 ? 0xffu : kS == 2 ? 0x55u : kS == 4 ? 0x11u : 0x01u;  // chunk 0 of each row
+    // s.words <= kS: no carries below.
+    return {((1u << s.words) - 1u) * row_starts, (1u << (s.words - 1)) * row_starts, s.rows * kS};
+}
+
+// s.tail in each row's last chunk, ~0 elsewhere.
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i packed_tail(const SharedWords& s, const PackedRows& v) {
+    const auto tail = static_cast<long long>(s.tail);
+    if constexpr (kS == 1) return _mm512_set1_epi64(tail);
+    return _mm512_mask_set1_epi64(_mm512_set1_epi64(-1), static_cast<__mmask8>(v.last), tail);
+}
+
+// The lanes of the last vector, at `at` (1..8 words left).
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline unsigned last_lanes(const PackedRows& v, int at) {
+    return v.lanes & _bzhi_u32(0xffu, static_cast<unsigned>(v.words - at));
+}
+
+// P AND the joined O in the 8 words from `at` on, the lanes of k only (the others 0, unread),
+// without the tail.
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i packed_and(const SharedWords& s, __m512i shift, int at,
+                                                                              unsigned k) {
+    const auto m = static_cast<__mmask8>(k);
+    const __m512i pw = _mm512_maskz_loadu_epi64(m, s.p + at);
+    const __m512i lo = _mm512_maskz_loadu_epi64(m, s.o + at);
+    const __m512i hi = _mm512_maskz_loadu_epi64(m, s.o + at + 1);
+    return _mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, shift));
+}
+
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline bool any_lane(__m512i w, __m512i tail) {
+    return _mm512_test_epi64_mask(w, tail) != 0;
+}
+
+// The first vector's lanes: the shared chunks of the rows that exist. Lane i's row, i / kS,
+// compared with the shared rows' count in a vector: two instructions for any count, and no
+// branch (most queries end with this vector: sprites at random offsets mostly share a pixel in
+// their first few shared rows).
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __mmask8 first_lanes(const SharedWords& s, const PackedRows& v) {
+    const __m512i row_of_lane = _mm512_srli_epi64(_mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0), std::countr_zero(unsigned{kS}));
+    const __mmask8 lanes = kS == 1 ? 0xff : static_cast<__mmask8>(v.lanes);
+    return _mm512_mask_cmplt_epi64_mask(lanes, row_of_lane, _mm512_set1_epi64(s.rows));
+}
+
+// The first vector, P AND the joined O, read without a load mask: 8 words (and the one after
+// them) from a shared row's start stay inside the mask's storage (kPadWords), and the lanes
+// outside the shared rows are left to the test's mask, so the loads wait for the row pointers
+// alone.
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i first_and(const SharedWords& s, __m512i shift) {
+    const __m512i pw = _mm512_loadu_si512(s.p);
+    const __m512i lo = _mm512_loadu_si512(s.o);
+    const __m512i hi = _mm512_loadu_si512(s.o + 1);
+    return _mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, shift));
+}
+
+// The first vector; then full vectors and the last one, with two branches a vector (one on
+// the data alone: measured faster than one on both).
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline bool any_packed(const SharedWords& s) {
+    const PackedRows v = packed_rows<kS>(s);
+    const __m512i tail = packed_tail<kS>(s, v);
+    const __m512i shift = _mm512_set1_epi64(s.shift);
+    if (_mm512_mask_test_epi64_mask(first_lanes<kS>(s, v), first_and(s, shift), tail) != 0) return true;
+    int at = 8;
+    for (; at + 8 < v.words; at += 8)
+        if (any_lane(packed_and(s, shift, at, v.lanes), tail)) return true;
+    return at < v.words && any_lane(packed_and(s, shift, at, last_lanes(v, at)), tail);
+}
+
+// The first shared pixel of vector w at `at` whose lanes with a shared pixel are `hit`, as
+// first_overlap's answer (none when hit is 0, without a branch). The lowest set bit of a lane
+// with a shared pixel is one: the tail keeps a chunk's low bits.
+template <int kS>
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline FirstPixel first_in_vector(const SharedWords& s, __m512i w,
+                                                                                     unsigned hit, int at) {
+    const int word = at + std::countr_zero(hit);  // in the shared rows
+    const __m512i first = _mm512_maskz_compress_epi64(static_cast<__mmask8>(_blsi_u32(hit)), w);  // to lane 0
+    const int col = 64 * (word % kS) + std::countr_zero(static_cast<u64>(first[0]));
+    const auto x = static_cast<std::uint32_t>(s.x0 + col), y = static_cast<std::uint32_t>(s.y0 + word / kS);
+    return {x | u64{y} << 32, hit != 0};
 }
 
 template <int kS>
-[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline __m512i packed_vector(const SharedWords& s,
-                                                                                 const PackedRows& v, int r) {
-    const int left = s.rows - r;
-    const unsigned rows = left >= 8 / kS ? 0xffu : (1u << (left * kS)) - 1u;
-    const auto k = static_cast<__mmask8>(v.lanes & rows);
-    const u64* p = s.p + r * kS;
-    const u64* o = s.o + r * kS;
-    const __m512i pw = _mm512_maskz_loadu_epi64(k, p);
-    const __m512i lo = _mm512_maskz_loadu_epi64(k, o);
-    const __m512i hi = _mm512_maskz_loadu_epi64(k, o + 1);
-    return _mm512_and_si512(_mm512_and_si512(pw, _mm512_shrdv_epi64(lo, hi, v.shift)), v.tail);
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline FirstPixel first_packed(const SharedWords& s) {
+    const PackedRows v = packed_rows<kS>(s);
+    const __m512i tail = packed_tail<kS>(s, v);
+    const __m512i shift = _mm512_set1_epi64(s.shift);
+    const __m512i w0 = first_and(s, shift);
+    const unsigned hit0 = _mm512_mask_test_epi64_mask(first_lanes<kS>(s, v), w0, tail);
+    if (hit0 != 0 || v.words <= 8) return first_in_vector<kS>(s, w0, hit0, 0);
+    int at = 8;
+    for (; at + 8 < v.words; at += 8) {
+        const __m512i w = packed_and(s, shift, at, v.lanes);
+        if (const unsigned hit = _mm512_test_epi64_mask(w, tail); hit != 0) return first_in_vector<kS>(s, w, hit, at);
+    }
+    const __m512i w = packed_and(s, shift, at, last_lanes(v, at));
+    return first_in_vector<kS>(s, w, _mm512_test_epi64_mask(w, tail), at);
 }
 
 template <int kS>
 [[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline int count_packed(const SharedWords& s) {
     const PackedRows v = packed_rows<kS>(s);
-    __m512i sum = _mm512_setzero_si512();
-    for (int r = 0; r < s.rows; r += 8 / kS) sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(packed_vector<kS>(s, v, r)));
+    const __m512i tail = packed_tail<kS>(s, v);
+    const __m512i shift = _mm512_set1_epi64(s.shift);
+    __m512i sum = _mm512_popcnt_epi64(_mm512_maskz_and_epi64(first_lanes<kS>(s, v), first_and(s, shift), tail));
+    int at = 8;
+    for (; at + 8 < v.words; at += 8)
+        sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(_mm512_and_si512(packed_and(s, shift, at, v.lanes), tail)));
+    if (at < v.words) sum = _mm512_add_epi64(sum, _mm512_popcnt_epi64(_mm512_and_si512(packed_and(s, shift, at, last_lanes(v, at)), tail)));
     return lane_sum(sum);
-}
-
-template <int kS>
-[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline Offset first_packed(const SharedWords& s) {
-    const PackedRows v = packed_rows<kS>(s);
-    for (int r = 0; r < s.rows; r += 8 / kS) {
-        const __m512i w = packed_vector<kS>(s, v, r);
-        if (const unsigned hit = _mm512_test_epi64_mask(w, w); hit != 0) {
-            const int lane = std::countr_zero(hit);
-            std::array<u64, 8> words;
-            _mm512_storeu_si512(words.data(), w);
-            return Offset{64 * (lane % kS) + std::countr_zero(words[static_cast<std::size_t>(lane)]), r + lane / kS};
-        }
-    }
-    return kNone;
-}
-
-template <int kS>
-[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline bool any_packed(const SharedWords& s) {
-    const PackedRows v = packed_rows<kS>(s);
-    for (int r = 0; r < s.rows; r += 8 / kS)
-        if (nonzero(packed_vector<kS>(s, v, r))) return true;
-    return false;
-}
-
-// 2 or 4 when both masks' rows are that many words (rows of 2..4 chunks pack into vectors).
-inline int packed_stride(const SharedWords& s) {
-    return s.words > 1 && s.p_stride == s.o_stride && (s.p_stride == 2 || s.p_stride == 4) ? static_cast<int>(s.p_stride)
-                                                                                             : 0;
 }
 
 // The first row (from 0) with a shared pixel, or s.rows; s.words in 2..8.
@@ -627,97 +768,108 @@ inline int packed_stride(const SharedWords& s) {
 }
 #endif
 
-// The queries, compiled into each kernel below.
-template <class P>
-[[gnu::always_inline]] inline bool any_query(const P& a, const P& b) {
+// The kernels: each one a whole query on two present masks. The portable and bmi2 ones are the
+// code above, compiled for their [[gnu::target]]s.
+bool any_portable(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
     return share_words(a, b, s) && any_shared(s);
 }
-
-template <class P>
-[[gnu::always_inline]] inline Offset first_query(const P& a, const P& b) {
+FirstPixel first_portable(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
-    return share_words(a, b, s) ? first_shared(s) : kNone;
+    return first_pixel(s, share_words(a, b, s) ? first_shared(s) : kNone);
 }
-
-template <class P>
-[[gnu::always_inline]] inline int count_query(const P& a, const P& b) {
+int count_portable(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
     return share_words(a, b, s) ? count_in_rows(s) : 0;
 }
 
-bool any_portable(const PlacedMask& a, const PlacedMask& b) { return any_query(a, b); }
-Offset first_portable(const PlacedMask& a, const PlacedMask& b) { return first_query(a, b); }
-int count_portable(const PlacedMask& a, const PlacedMask& b) { return count_query(a, b); }
-
 #ifdef JOSTLE_MASK_X86_KERNELS
-[[gnu::target(JOSTLE_BMI2)]] bool any_bmi2(const PlacedMask& a, const PlacedMask& b) { return any_query(a, b); }
-[[gnu::target(JOSTLE_BMI2)]] Offset first_bmi2(const PlacedMask& a, const PlacedMask& b) {
-    return first_query(a, b);
+[[gnu::target(JOSTLE_BMI2)]] bool any_bmi2(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return share_words(a, b, s) && any_shared(s);
 }
-[[gnu::target(JOSTLE_BMI2)]] int count_bmi2(const PlacedMask& a, const PlacedMask& b) { return count_query(a, b); }
+[[gnu::target(JOSTLE_BMI2)]] FirstPixel first_bmi2(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return first_pixel(s, share_words(a, b, s) ? first_shared(s) : kNone);
+}
+[[gnu::target(JOSTLE_BMI2)]] int count_bmi2(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return share_words(a, b, s) ? count_in_rows(s) : 0;
+}
 
-// The avx512 kernel: 8 rows a vector for rows of one chunk from masks of 1 or 2 words per
-// row; 4 or 2 rows a vector for rows of 2..4 chunks from two masks both 2 or 4 words wide; a
-// vector a row for the other rows of 2..8 chunks; the bmi2 code for the rest.
-[[gnu::target(JOSTLE_AVX512)]] bool any_vector(const PlacedMask& a, const PlacedMask& b) {
+// The avx512 kernels: two masks of the same stride of 1, 2, 4 or 8 words (up to 64, 128, 256
+// or 512 wide) take the packed rows, 8 / stride rows a vector, at every shared width, in one
+// function per stride. The other pairs take *_vector_other: 8 rows a vector for rows of one
+// chunk from a mask 1 and a mask 2 words wide; a vector a row for the other rows of 2..8
+// chunks; the bmi2 code for the rest.
+[[gnu::target(JOSTLE_AVX512)]] bool any_vector_other(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
     if (!share_words(a, b, s)) return false;
     if (s.words == 1) {
         switch (stride_pair(s)) {
-        case 5: return first_row_eight<1, 1>(s) < s.rows;
         case 6: return first_row_eight<1, 2>(s) < s.rows;
         case 9: return first_row_eight<2, 1>(s) < s.rows;
-        case 10: return first_row_eight<2, 2>(s) < s.rows;
         default: return any_shared(s);
         }
     }
-    if (const int packed = packed_stride(s); packed != 0) return packed == 2 ? any_packed<2>(s) : any_packed<4>(s);
     return s.words <= 8 ? any_avx512(s) : any_shared(s);
 }
-[[gnu::target(JOSTLE_AVX512)]] Offset first_vector(const PlacedMask& a, const PlacedMask& b) {
-    SharedWords s;
-    if (!share_words(a, b, s)) return kNone;
-    int r = 0;
+[[gnu::target(JOSTLE_AVX512), gnu::always_inline]] inline Offset first_other(const SharedWords& s) {
     if (s.words == 1) {
+        int r = 0;
         switch (stride_pair(s)) {
-        case 5: r = first_row_eight<1, 1>(s); break;
         case 6: r = first_row_eight<1, 2>(s); break;
         case 9: r = first_row_eight<2, 1>(s); break;
-        case 10: r = first_row_eight<2, 2>(s); break;
         default: return first_shared(s);
         }
         return r < s.rows ? first_in_row<true>(s, r) : kNone;
     }
-    if (const int packed = packed_stride(s); packed != 0) return packed == 2 ? first_packed<2>(s) : first_packed<4>(s);
     if (s.words > 8) return first_shared(s);
-    r = first_row_avx512(s);
+    const int r = first_row_avx512(s);
     return r < s.rows ? first_in_row<false>(s, r) : kNone;
 }
-[[gnu::target(JOSTLE_AVX512)]] int count_vector(const PlacedMask& a, const PlacedMask& b) {
+[[gnu::target(JOSTLE_AVX512)]] FirstPixel first_vector_other(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return first_pixel(s, share_words(a, b, s) ? first_other(s) : kNone);
+}
+[[gnu::target(JOSTLE_AVX512)]] int count_vector_other(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
     if (!share_words(a, b, s)) return 0;
     if (s.words == 1) {
         switch (stride_pair(s)) {
-        case 5: return count_eight<1, 1>(s);
         case 6: return count_eight<1, 2>(s);
         case 9: return count_eight<2, 1>(s);
-        case 10: return count_eight<2, 2>(s);
         default: return count_in_rows(s);
         }
     }
-    if (const int packed = packed_stride(s); packed != 0) return packed == 2 ? count_packed<2>(s) : count_packed<4>(s);
     return s.words <= 8 ? count_avx512(s) : count_in_rows(s);
 }
 
+template <int kS>
+[[gnu::target(JOSTLE_AVX512)]] bool any_vector_packed(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return share_words<kS>(a, b, s) && any_packed<kS>(s);
+}
+template <int kS>
+[[gnu::target(JOSTLE_AVX512)]] FirstPixel first_vector_packed(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return share_words<kS>(a, b, s) ? first_packed<kS>(s) : FirstPixel{0, 0};
+}
+template <int kS>
+[[gnu::target(JOSTLE_AVX512)]] int count_vector_packed(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return share_words<kS>(a, b, s) ? count_packed<kS>(s) : 0;
+}
+
 bool cpu_has(MaskKernel k) {
+    __builtin_cpu_init();  // kBestKernel asks from a static initializer, maybe before libgcc's
     switch (k) {
     case MaskKernel::portable: return true;
     case MaskKernel::bmi2:
         return __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
     case MaskKernel::avx512:
         return cpu_has(MaskKernel::bmi2) && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") &&
-               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
                __builtin_cpu_supports("avx512vpopcntdq") && __builtin_cpu_supports("avx512vbmi2");
     }
     return false;
@@ -732,31 +884,49 @@ MaskKernel usable_kernel(MaskKernel k) {
     return k;
 }
 
+// One kernel's three queries.
+struct Kernels {
+    bool (*any)(const PlacedMask&, const PlacedMask&);
+    FirstPixel (*first)(const PlacedMask&, const PlacedMask&);
+    int (*count)(const PlacedMask&, const PlacedMask&);
+};
+
+constexpr Kernels kPortable{any_portable, first_portable, count_portable};
+#ifdef JOSTLE_MASK_X86_KERNELS
+constexpr Kernels kBmi2{any_bmi2, first_bmi2, count_bmi2};
+// By both masks' words per row when it is the same and at most 8, else entry 0. A table, not
+// a switch: one indirect call, predicted like the switch's branches, in fewer instructions.
+template <int kS>
+constexpr Kernels kPacked{any_vector_packed<kS>, first_vector_packed<kS>, count_vector_packed<kS>};
+constexpr Kernels kOther{any_vector_other, first_vector_other, count_vector_other};
+constexpr std::array<Kernels, 9> kVector{kOther, kPacked<1>, kPacked<2>, kOther, kPacked<4>,
+                                         kOther, kOther,     kOther,     kPacked<8>};
+#endif
+
+// The queries of kernel k (one the CPU has) for two present masks.
+inline const Kernels& kernels_for(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+#ifdef JOSTLE_MASK_X86_KERNELS
+    if (k == MaskKernel::avx512) {
+        const auto stride = static_cast<unsigned>(a.mask->words_per_row());
+        return kVector[stride == static_cast<unsigned>(b.mask->words_per_row()) && stride <= 8 ? stride : 0];
+    }
+    if (k == MaskKernel::bmi2) return kBmi2;
+#endif
+    (void)a, (void)b, (void)k;
+    return kPortable;
+}
+
+// A missing mask (a null PlacedMask::mask) shares no pixel; so does a 0-wide or 0-high one,
+// which the kernels find without a test of their own.
 bool any_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
-#ifdef JOSTLE_MASK_X86_KERNELS
-    if (k == MaskKernel::avx512) return any_vector(a, b);
-    if (k == MaskKernel::bmi2) return any_bmi2(a, b);
-#endif
-    (void)k;
-    return any_portable(a, b);
+    return a.mask != nullptr && b.mask != nullptr && kernels_for(a, b, k).any(a, b);
 }
-
-Offset first_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
-#ifdef JOSTLE_MASK_X86_KERNELS
-    if (k == MaskKernel::avx512) return first_vector(a, b);
-    if (k == MaskKernel::bmi2) return first_bmi2(a, b);
-#endif
-    (void)k;
-    return first_portable(a, b);
+std::optional<Pixel> first_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
+    // One to_optional on both paths: two would merge their results through the stack.
+    return to_optional(a.mask != nullptr && b.mask != nullptr ? kernels_for(a, b, k).first(a, b) : FirstPixel{0, 0});
 }
-
 int count_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
-#ifdef JOSTLE_MASK_X86_KERNELS
-    if (k == MaskKernel::avx512) return count_vector(a, b);
-    if (k == MaskKernel::bmi2) return count_bmi2(a, b);
-#endif
-    (void)k;
-    return count_portable(a, b);
+    return a.mask != nullptr && b.mask != nullptr ? kernels_for(a, b, k).count(a, b) : 0;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -879,11 +1049,7 @@ struct MaskPairProblem {
             return false;
         const Placed moved{a.m, ax, ay};
         Offset at = kNone;
-        if (dir > 0) {
-            at = first_query(moved, b);
-        } else if (SharedWords s; share_words(moved, b, s)) {
-            at = last_row_first_shared(s);
-        }
+        if (SharedWords s; share_words(moved, b, s)) at = dir > 0 ? first_shared(s) : last_row_first_shared(s);
         if (!at.found()) return false;
         // A's pixel there stays on B's pixels while B's column runs on in the scan direction.
         const int bx = static_cast<int>(std::max(ax, b.x) + at.col - b.x);
@@ -1378,47 +1544,24 @@ Manifold collide_region(const PlacedMask& a, const std::optional<R>& r) {
 
 namespace {
 
-// The best kernel this CPU has, found once (a constant of the machine, not state).
-MaskKernel best_kernel() {
-    static const MaskKernel best = usable_kernel(MaskKernel::avx512);
-    return best;
-}
-
-// A 0-wide or 0-high mask shares no pixel: share_words finds that without a test of its own.
-bool overlaps_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
-    return a.mask != nullptr && b.mask != nullptr && any_with(a, b, k);
-}
-
-std::optional<Pixel> first_overlap_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
-    if (a.mask == nullptr || b.mask == nullptr) return std::nullopt;
-    const Offset at = first_with(a, b, k);
-    if (!at.found()) return std::nullopt;
-    // The shared rectangle's corner is (max x, max y); the pixel is inside both masks.
-    return Pixel{static_cast<int>(std::max<i64>(a.x, b.x) + at.col), static_cast<int>(std::max<i64>(a.y, b.y) + at.row)};
-}
-
-int count_overlap_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
-    if (a.mask == nullptr || b.mask == nullptr) return 0;
-    return count_with(a, b, k);
-}
+// The best kernel this CPU has, found when the library is loaded: a constant of the machine,
+// not state. A query made before that (from another file's static initializer) reads its zero
+// value, portable: slower, with the same answers.
+const MaskKernel kBestKernel = usable_kernel(MaskKernel::avx512);
 
 }  // namespace
 
-bool overlaps(const PlacedMask& a, const PlacedMask& b) { return overlaps_with(a, b, best_kernel()); }
-std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b) {
-    return first_overlap_with(a, b, best_kernel());
-}
-int count_overlap(const PlacedMask& a, const PlacedMask& b) { return count_overlap_with(a, b, best_kernel()); }
+bool overlaps(const PlacedMask& a, const PlacedMask& b) { return any_with(a, b, kBestKernel); }
+std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b) { return first_with(a, b, kBestKernel); }
+int count_overlap(const PlacedMask& a, const PlacedMask& b) { return count_with(a, b, kBestKernel); }
 
 namespace detail {
-MaskKernel best_mask_kernel() { return best_kernel(); }
-bool overlaps(const PlacedMask& a, const PlacedMask& b, MaskKernel k) { return overlaps_with(a, b, usable_kernel(k)); }
+MaskKernel best_mask_kernel() { return kBestKernel; }
+bool overlaps(const PlacedMask& a, const PlacedMask& b, MaskKernel k) { return any_with(a, b, usable_kernel(k)); }
 std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
-    return first_overlap_with(a, b, usable_kernel(k));
+    return first_with(a, b, usable_kernel(k));
 }
-int count_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
-    return count_overlap_with(a, b, usable_kernel(k));
-}
+int count_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k) { return count_with(a, b, usable_kernel(k)); }
 }  // namespace detail
 
 Manifold collide(const PlacedMask& a, const PlacedMask& b) {
