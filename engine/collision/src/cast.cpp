@@ -5,6 +5,10 @@
 // polygons by clipping against every edge's half-plane (Cyrus-Beck), segments by the
 // parametric crossing of 09-78, masks row band by row band.
 #include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <bit>
 #include <cmath>
 #include <utility>
@@ -208,45 +212,96 @@ EdgeClip clip_edges(Vec2 from, Vec2 d, const Vec2* points, const Vec2* normals, 
 }
 
 #ifdef JOSTLE_AVX2_PATHS
-using detail::Float8;
-using detail::Int8;
+// VHADDPS adds neighbouring floats within each 128-bit half, so sums over slots 0-3 and 4-7
+// come out as edges 0, 1, 4, 5, 2, 3, 6, 7. For a lane mask in that order: the first edge it
+// names, or 15 when it names none (an unused slot for up to 8 vertices, so a zero normal).
+constexpr auto kFirstEdge = [] {
+    std::array<std::uint8_t, 256> first{};
+    constexpr int kEdgeOfLane[8] = {0, 1, 4, 5, 2, 3, 6, 7};
+    for (int bits = 0; bits < 256; ++bits) {
+        int edge = 15;
+        for (int lane = 0; lane < 8; ++lane)
+            if ((bits >> lane & 1) != 0 && kEdgeOfLane[lane] < edge) edge = kEdgeOfLane[lane];
+        first[bits] = static_cast<std::uint8_t>(edge);
+    }
+    return first;
+}();
 
-// The same for up to 8 edges, one to a lane of AVX2 (chosen at run time): one VDIVPS for every
-// t and no branch per edge (the loop's depend on the data, so they mispredict). Each lane does
-// the loop's arithmetic (no FMA, -ffp-contract=off); the loop's max and min become VMAXPS folds
-// over lanes holding only numbers (NaN and dead lanes get the starting bound), and the first
-// edge reaching the max is the first lane equal to it: the same bits as the loop.
-[[gnu::target("avx2"), gnu::always_inline]] inline EdgeClip clip_edges8(Vec2 from, Vec2 d, const Vec2* points,
-                                                                        const Vec2* normals, int count) {
-    Float8 nx, ny, px, py;
-    detail::load_xy8(normals, nx, ny);  // reads 8 slots: a Polygon has 16
-    detail::load_xy8(points, px, py);
-    const Float8 num = nx * (px - from.x) + ny * (py - from.y);
-    const Float8 den = nx * d.x + ny * d.y;
-    const Float8 t = num / den;
-    const Int8 live = Int8{0, 1, 2, 3, 4, 5, 6, 7} < count;
-    if (detail::lane_bits8(live & (den == 0.0f) & (num < 0.0f)) != 0) return {};  // parallel, outside
-    const Float8 zero{}, one = zero + 1.0f, minus_inf = zero - INFINITY;
-    const Int8 entering = live & (den < 0.0f) & (t > 0.0f);
-    const Int8 leaving = live & (den > 0.0f) & (t < 1.0f);
-    const Float8 t_enter = detail::max8(entering ? t : zero);
-    const Float8 t_exit = -detail::max8(leaving ? -t : -one);  // min(x) is -max(-x): negation is exact
-    if (!(t_enter[0] <= t_exit[0])) return {};
-    EdgeClip c;
-    c.hit = true;
-    c.t_enter = t_enter[0];
-    if (c.t_enter > 0.0f) c.normal = normals[std::countr_zero(detail::lane_bits8(entering & (t == t_enter)))];
-    const Float8 side = -num;
-    const Int8 sides = live & (side > minus_inf);  // not NaN
-    c.max_side = detail::max8(sides ? side : minus_inf)[0];
-    return c;
+// A Vec2 in both floats of every 64-bit lane (VBROADCASTSD from the register it came in).
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256 broadcast_xy(Vec2 v) {
+    return _mm256_castpd_ps(_mm256_set1_pd(std::bit_cast<double>(v)));
+}
+// The smallest lane in every lane (VMINPS over the halves, pairs and neighbours); no NaN lanes.
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256 min8(__m256 m) {
+    m = _mm256_min_ps(m, _mm256_permute2f128_ps(m, m, 1));
+    m = _mm256_min_ps(m, _mm256_permute_ps(m, 0x4e));
+    return _mm256_min_ps(m, _mm256_permute_ps(m, 0xb1));
+}
+// Normal `i` with -0 made +0, in lanes 0 and 1 (one 8-byte load).
+inline __m128 plain_normal(const Vec2* normals, int i) {
+    const __m128 n = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(normals + i)));
+    return _mm_add_ps(n, _mm_setzero_ps());
+}
+// A hit at parameter t (lane 0), point and normal in lanes 0-1 of their registers.
+inline CastHit make_hit(__m128 t, __m128 point, __m128 normal) {
+    static_assert(offsetof(CastHit, normal) == offsetof(CastHit, point) + sizeof(Vec2));
+    CastHit h;
+    h.hit = true;
+    h.t = _mm_cvtss_f32(t);
+    const __m128 both = _mm_movelh_ps(point, normal);  // one 16-byte store for point and normal
+    std::memcpy(static_cast<void*>(&h.point), &both, sizeof both);
+    return h;
 }
 
-// The whole cast in one AVX2 function (no call, no spilled registers between the two parts).
+// The loop's answer for 3 to 8 edges, one to a lane of AVX2 (chosen at run time): one VDIVPS for
+// every t, a VMINPS fold, lane masks, and one branch on hit or miss (the loop's branches per
+// edge depend on the data). The lanes do the loop's arithmetic with one sign turned: side =
+// sum of n * (from - p) is -num exactly (negating a product or a sum is exact), and tn = side /
+// den is -t; so t_enter is -min(tn) over the entering lanes, and every test below is the loop's
+// with the sign of t turned. The loop's max and min do not depend on the order of the edges, so
+// they are the same bits; the first edge reaching the max is the first lane equal to it.
+// Slots 6-7 of a hexagon hold zero normals (a Polygon keeps its unused slots zero): side and den
+// are +-0 there (or NaN), so those lanes enter, leave and stand outside nowhere.
 [[gnu::target("avx2")]] CastHit cast_polygon8(Vec2 from, Vec2 to, const Polygon& poly) {
-    if (!valid(poly)) return {};
-    const Vec2 d = to - from;
-    return polygon_hit(from, d, poly, clip_edges8(from, d, poly.points().data(), poly.normals().data(), poly.count()));
+    const __m256 f = broadcast_xy(from);
+    const __m256 d = _mm256_sub_ps(broadcast_xy(to), f);  // to - from, as the loop's d
+    const float* points = &poly.points().data()->x;       // 8 slots read: a Polygon has 16
+    const float* normals = &poly.normals().data()->x;
+    const __m256 n0 = _mm256_loadu_ps(normals), n1 = _mm256_loadu_ps(normals + 8);
+    // Each slot's x term plus its y term, as dot() sums them (VHADDPS adds y + x: the same sum).
+    const __m256 side = _mm256_hadd_ps(_mm256_mul_ps(n0, _mm256_sub_ps(f, _mm256_loadu_ps(points))),
+                                       _mm256_mul_ps(n1, _mm256_sub_ps(f, _mm256_loadu_ps(points + 8))));
+    const __m256 den = _mm256_hadd_ps(_mm256_mul_ps(n0, d), _mm256_mul_ps(n1, d));
+    const __m256 tn = _mm256_div_ps(side, den);
+    const __m256 zero = _mm256_setzero_ps();
+    const __m256 entering = _mm256_and_ps(_mm256_cmp_ps(den, zero, _CMP_LT_OQ), _mm256_cmp_ps(tn, zero, _CMP_LT_OQ));
+    const __m256 tn_enter = min8(_mm256_and_ps(entering, tn));  // -t_enter (+0 for none), every lane
+    // A miss: a leaving edge before t_enter, t_enter past 1, or parallel to an edge outside it.
+    const __m256 leaves_first = _mm256_and_ps(_mm256_cmp_ps(den, zero, _CMP_GT_OQ), _mm256_cmp_ps(tn, tn_enter, _CMP_GT_OQ));
+    const __m256 parallel_outside = _mm256_and_ps(_mm256_cmp_ps(den, zero, _CMP_EQ_OQ), _mm256_cmp_ps(side, zero, _CMP_GT_OQ));
+    const __m256 past_end = _mm256_cmp_ps(tn_enter, _mm256_set1_ps(-1.0f), _CMP_LT_OQ);
+    if (_mm256_movemask_ps(_mm256_or_ps(_mm256_or_ps(leaves_first, parallel_outside), past_end)) != 0) return {};
+    // valid_motion(from, d) for the hit: from + d and dot(d, d) finite (which holds only for a
+    // finite d, and then from + d only for a finite from), side by side.
+    const __m128 f2 = _mm256_castps256_ps128(f), d2 = _mm256_castps256_ps128(d);
+    const __m128 dd = _mm_mul_ps(d2, d2);
+    const __m128 length2 = _mm_add_ps(dd, _mm_permute_ps(dd, 0xb1));  // dx^2 + dy^2 in every lane
+    const __m128 end = _mm_add_ps(f2, d2);
+    const __m128 finite = _mm_add_ps(_mm_sub_ps(end, end), _mm_sub_ps(length2, length2));  // 0, or NaN
+    if (_mm_movemask_ps(_mm_cmpeq_ps(finite, _mm_setzero_ps())) != 0xf) return {};
+    const Vec2* edge_normals = poly.normals().data();
+    const int outside = _mm256_movemask_ps(_mm256_cmp_ps(side, zero, _CMP_GT_OQ));
+    if (outside == 0) [[unlikely]] {
+        // from is inside every edge (the loop's max_side <= 0): t = 0, and the normal of the
+        // first edge through from, if any.
+        const int on = _mm256_movemask_ps(_mm256_cmp_ps(side, zero, _CMP_EQ_OQ));
+        return make_hit(_mm_setzero_ps(), f2, plain_normal(edge_normals, kFirstEdge[on]));
+    }
+    // From outside: t_enter, and the normal of the first entering edge giving it (none when
+    // t_enter = 0, which names no lane). 0 - tn_enter is +t_enter, +0 when no edge entered.
+    const int entered_by = _mm256_movemask_ps(_mm256_and_ps(entering, _mm256_cmp_ps(tn, tn_enter, _CMP_EQ_OQ)));
+    const __m128 t = _mm_sub_ps(_mm_setzero_ps(), _mm256_castps256_ps128(tn_enter));
+    return make_hit(t, _mm_add_ps(f2, _mm_mul_ps(t, d2)), plain_normal(edge_normals, kFirstEdge[entered_by]));
 }
 #endif
 
@@ -254,7 +309,7 @@ using detail::Int8;
 
 CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
 #ifdef JOSTLE_AVX2_PATHS
-    if (poly.count() <= 8 && detail::has_avx2()) return cast_polygon8(from, to, poly);
+    if (static_cast<unsigned>(poly.count() - 3) <= 5u && detail::has_avx2()) return cast_polygon8(from, to, poly);
 #endif
     return cast_polygon(from, to, poly);
 }

@@ -130,12 +130,17 @@ inline Float4 plain_zeros(Float4 v) { return v + Float4{0.0f, 0.0f, 0.0f, 0.0f};
 // function, never -march: it changes which instructions run, not the rounding; no FMA).
 using Float8 = float __attribute__((vector_size(32)));
 using Int8 = int __attribute__((vector_size(32)));
-// Whether the AVX2 paths run: the CPU's answer, checked once; detail::use_avx2_paths lets
-// tests turn them off to compare against the SSE paths.
-inline bool& avx2_paths_on() {
-    static bool on = __builtin_cpu_supports("avx2");
-    return on;
+// Whether the AVX2 paths run: the CPU's answer, checked once at start-up; detail::use_avx2_paths
+// lets tests turn them off to compare against the SSE paths. A plain variable rather than a
+// function's static, so that reading it is one load with no guard (a function's static made
+// every dispatching function keep registers for the guard's call). Before it is set, e.g. from
+// another file's static initialiser, it reads false: the SSE paths, with the same answers.
+inline bool cpu_has_avx2() {
+    __builtin_cpu_init();  // may run before libgcc's own constructor has
+    return __builtin_cpu_supports("avx2");
 }
+inline bool avx2_paths_flag = cpu_has_avx2();
+inline bool& avx2_paths_on() { return avx2_paths_flag; }
 inline bool has_avx2() { return avx2_paths_on(); }
 // Bit i set when lane i of a comparison's result is true (VMOVMSKPS).
 [[gnu::target("avx2"), gnu::always_inline]] inline unsigned lane_bits8(Int8 m) {
