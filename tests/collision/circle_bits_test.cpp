@@ -1,6 +1,7 @@
 // The circle pairs' lane-parallel code (circle.cpp: four faces or vertices to a register with
-// NaN in the slots past the last, x and y side by side, one DIVPS for a normal) against the
-// plain scalar loops it replaced, bit for bit: hit, depth and normal, on seeded random shapes of
+// NaN in the slots past the last, or eight with AVX2 for up to 8 vertices, x and y side by side,
+// one DIVPS for a normal) against the plain scalar loops it replaced, bit for bit (polygons on
+// both the SSE and the AVX2 path): hit, depth and normal, on seeded random shapes of
 // every vertex count, centres inside, beside edges, in vertex regions, on vertices and on a
 // grid of integers (ties), and on inputs past the limits (NaN, infinities, overflow).
 #include <gtest/gtest.h>
@@ -206,7 +207,12 @@ TEST(CircleBits, PolygonCircleEveryVertexCount) {
             }
             const Circle circle{{g.wild(c.x), g.wild(c.y)}, g.wild(r)};
             SCOPED_TRACE(testing::Message() << count << " vertices, case " << k);
-            ASSERT_TRUE(same_bits(collide(poly, circle), scalar_polygon_circle(poly, circle)));
+            const Manifold want = scalar_polygon_circle(poly, circle);
+            ASSERT_TRUE(same_bits(collide(poly, circle), want));
+            if (detail::use_avx2_paths(false)) ADD_FAILURE() << "the AVX2 paths did not turn off";
+            const Manifold sse = collide(poly, circle);
+            detail::use_avx2_paths(true);
+            ASSERT_TRUE(same_bits(sse, want)) << "(the SSE path)";
         }
     }
 }

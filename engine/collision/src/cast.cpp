@@ -212,20 +212,9 @@ CastHit cast_polygon(Vec2 from, Vec2 to, const Polygon& poly) {
 }
 
 #ifdef JOSTLE_AVX2_PATHS
-// VHADDPS adds neighbouring floats within each 128-bit half, so sums over slots 0-3 and 4-7
-// come out as edges 0, 1, 4, 5, 2, 3, 6, 7. For a lane mask in that order: the first edge it
-// names, or 15 when it names none (an unused slot for up to 8 vertices, so a zero normal).
-constexpr auto kFirstEdge = [] {
-    std::array<std::uint8_t, 256> first{};
-    constexpr int kEdgeOfLane[8] = {0, 1, 4, 5, 2, 3, 6, 7};
-    for (int bits = 0; bits < 256; ++bits) {
-        int edge = 15;
-        for (int lane = 0; lane < 8; ++lane)
-            if ((bits >> lane & 1) != 0 && kEdgeOfLane[lane] < edge) edge = kEdgeOfLane[lane];
-        first[bits] = static_cast<std::uint8_t>(edge);
-    }
-    return first;
-}();
+// The first edge a lane mask in VHADDPS's order names, or 15 when it names none (an unused slot
+// for up to 8 vertices, so a zero normal).
+constexpr const auto& kFirstEdge = detail::kFirstHaddSlot<15>;
 
 // The most negative lane in every lane, for lanes that are each +0 or a negative float (no NaN):
 // their bits read as unsigned integers grow with the magnitude past the sign bit, and +0 is 0,

@@ -213,18 +213,12 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     return {best[0], index[0]};
 }
 
-// collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
-// Kept out of line (a tail call, the separations in registers) so that the common early out
-// is a short function with nothing to save.
-[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, Float4 cc, Float4 s0,
-                                               Float4 s1, Float4 s2, Float4 s3) {
-    if (!valid(b)) return {};
+// collide(Polygon, Circle) once the centre is within r of every face's line, given the largest
+// separation max_sep, the first face at it, and the nearest-vertex search (run only if needed).
+template <class Nearest>
+[[gnu::always_inline]] inline Manifold polygon_circle_answer(const Polygon& a, const Circle& b, Float4 cc, float max_sep, int max_edge,
+                                      Nearest&& nearest_vertex_of) {
     const Vec2 c = b.center;
-    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    Float4 top = lane_max(s1, lane_max(s0, none));
-    if (a.count() > 8) top = lane_max(s3, lane_max(s2, top));  // else copies of s0
-    const float max_sep = largest(top);
-    const int max_edge = first_face_at(a.count(), s0, s1, s2, s3, max_sep);
     if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);  // centre inside
     // Beside the edge of greatest separation (c projects inside it, tested from each end so
     // that a long edge rounds neither), that edge is the nearest feature: its own normal and
@@ -239,7 +233,7 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     if ((along[0] > 0.0f) & (along[2] < 0.0f)) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
     // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
     // plain difference of points (exact for nearby floats).
-    const NearestVertex nearest = nearest_vertex(a, cc);
+    const NearestVertex nearest = nearest_vertex_of();
     const float dist2 = nearest.dist2;
     if (!(dist2 <= b.radius * b.radius)) return {};
     const int vertex = nearest.vertex;
@@ -254,6 +248,74 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) n = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
     return hit_with(b.radius - len, n);
 }
+
+// collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
+// Kept out of line (a tail call, the separations in registers) so that the common early out
+// is a short function with nothing to save.
+[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, Float4 cc, Float4 s0,
+                                               Float4 s1, Float4 s2, Float4 s3) {
+    if (!valid(b)) return {};
+    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    Float4 top = lane_max(s1, lane_max(s0, none));
+    if (a.count() > 8) top = lane_max(s3, lane_max(s2, top));  // else copies of s0
+    const float max_sep = largest(top);
+    const int max_edge = first_face_at(a.count(), s0, s1, s2, s3, max_sep);
+    return polygon_circle_answer(a, b, cc, max_sep, max_edge, [&] { return nearest_vertex(a, cc); });
+}
+
+Manifold polygon_circle(const Polygon& a, const Circle& b) {
+    if (!valid(a)) return {};
+    const Float4 cc = {b.center.x, b.center.y, b.center.x, b.center.y};
+    const FaceSeparations f = face_separations(a, cc);
+    // An edge normal separates (some lane's maximum beyond r, as the largest would be): early out.
+    if (detail::lane_bits(f.top > Float4{b.radius, b.radius, b.radius, b.radius}) != 0) return {};
+    return polygon_circle_near(a, b, cc, f.s0, f.s1, f.s2, f.s3);
+}
+
+#ifdef JOSTLE_AVX2_PATHS
+// Per count (3..8), all bits set in the lanes (VHADDPS's order) of the slots past the last
+// vertex: OR-ed into a float they make it NaN, which no comparison picks.
+constexpr auto kDeadHaddLanes = [] {
+    std::array<std::array<std::int32_t, 8>, 9> dead{};
+    for (int count = 0; count <= 8; ++count)
+        for (int lane = 0; lane < 8; ++lane) dead[count][lane] = detail::kSlotOfHaddLane[lane] >= count ? -1 : 0;
+    return dead;
+}();
+
+// collide(Polygon, Circle) for 3 to 8 vertices with AVX2 (chosen at run time): every face's
+// separation in one register instead of two, by VHADDPS over the slots as stored, the centre
+// broadcast straight from the Circle, and, past the early out, the largest separation and the
+// nearest vertex by folds over the lanes. The lanes do the SSE path's arithmetic (each slot's x
+// term plus its y term: VHADDPS adds y + x, the same sum), NaN past the last vertex; the folds
+// see NaN as -inf (faces) or +inf (vertices), as the SSE path's comparisons skip it, and take
+// the first lane equal to the result, in slot order: the same bits.
+[[gnu::target("avx2")]] Manifold polygon_circle8(const Polygon& a, const Circle& b) {
+    const __m256 cc = _mm256_castpd_ps(_mm256_broadcast_sd(reinterpret_cast<const double*>(&b.center)));
+    const float* points = &a.points().data()->x;  // 8 slots read: a Polygon has 16
+    const float* normals = &a.normals().data()->x;
+    const __m256 o0 = _mm256_sub_ps(cc, _mm256_loadu_ps(points));  // c - p, slots 0-3 and 4-7
+    const __m256 o1 = _mm256_sub_ps(cc, _mm256_loadu_ps(points + 8));
+    const __m256 dead = _mm256_loadu_ps(reinterpret_cast<const float*>(kDeadHaddLanes[a.count()].data()));
+    const __m256 side = _mm256_or_ps(
+        _mm256_hadd_ps(_mm256_mul_ps(_mm256_loadu_ps(normals), o0), _mm256_mul_ps(_mm256_loadu_ps(normals + 8), o1)),
+        dead);
+    // An edge normal separates: early out.
+    if (_mm256_movemask_ps(_mm256_cmp_ps(side, _mm256_set1_ps(b.radius), _CMP_GT_OQ)) != 0) return {};
+    if (!valid(b)) return {};
+    const __m256 minus_inf = _mm256_set1_ps(-INFINITY);
+    const __m256 top = detail::max8(_mm256_max_ps(side, minus_inf));  // VMAXPS gives -inf for NaN
+    const float max_sep = _mm256_cvtss_f32(top);
+    const int max_edge = detail::kFirstHaddSlot<0>[_mm256_movemask_ps(_mm256_cmp_ps(side, top, _CMP_EQ_OQ))];
+    const Float4 c4 = {b.center.x, b.center.y, b.center.x, b.center.y};
+    return polygon_circle_answer(a, b, c4, max_sep, max_edge, [&]() __attribute__((target("avx2"))) {
+        const __m256 d2 = _mm256_or_ps(_mm256_hadd_ps(_mm256_mul_ps(o0, o0), _mm256_mul_ps(o1, o1)), dead);
+        const __m256 least = detail::min8(_mm256_min_ps(d2, _mm256_set1_ps(INFINITY)));  // VMINPS: +inf for NaN
+        // The first vertex at the least distance (when it is +inf, any: that is a miss).
+        return NearestVertex{_mm256_cvtss_f32(least),
+                             detail::kFirstHaddSlot<0>[_mm256_movemask_ps(_mm256_cmp_ps(d2, least, _CMP_EQ_OQ))]};
+    });
+}
+#endif
 }  // namespace
 
 Manifold collide(const Polygon& a, const Circle& b) {
@@ -262,12 +324,10 @@ Manifold collide(const Polygon& a, const Circle& b) {
     // inside, the shortest way out is through the nearest edge, by r plus c's depth.
     // The circle is checked only for an answer that would be a hit (an invalid circle is a
     // miss, and the arithmetic on any input is defined); the empty polygon has no faces.
-    if (!valid(a)) return {};
-    const Float4 cc = {b.center.x, b.center.y, b.center.x, b.center.y};
-    const FaceSeparations f = face_separations(a, cc);
-    // An edge normal separates (some lane's maximum beyond r, as the largest would be): early out.
-    if (detail::lane_bits(f.top > Float4{b.radius, b.radius, b.radius, b.radius}) != 0) return {};
-    return polygon_circle_near(a, b, cc, f.s0, f.s1, f.s2, f.s3);
+#ifdef JOSTLE_AVX2_PATHS
+    if (static_cast<unsigned>(a.count() - 3) <= 5u && detail::has_avx2()) return polygon_circle8(a, b);
+#endif
+    return polygon_circle(a, b);
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {

@@ -3,7 +3,9 @@
 // parameters, and the convex "point set + axes" view used by SAT.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #if defined(__SSE__)
 #include <xmmintrin.h>
@@ -157,6 +159,21 @@ inline bool has_avx2() { return avx2_paths_on(); }
     x = __builtin_shufflevector(a, b, 0, 2, 8, 10, 4, 6, 12, 14);
     y = __builtin_shufflevector(a, b, 1, 3, 9, 11, 5, 7, 13, 15);
 }
+// VHADDPS adds neighbouring floats within each 128-bit half, so per-slot sums over slots 0-3 and
+// 4-7 (x, y pairs as a Polygon stores them) come out in lanes as slots 0, 1, 4, 5, 2, 3, 6, 7.
+inline constexpr int kSlotOfHaddLane[8] = {0, 1, 4, 5, 2, 3, 6, 7};
+// For a lane mask in that order: the first slot it names, or `none` when it names none.
+template <int none>
+inline constexpr auto kFirstHaddSlot = [] {
+    std::array<std::uint8_t, 256> first{};
+    for (int bits = 0; bits < 256; ++bits) {
+        int slot = none;
+        for (int lane = 7; lane >= 0; --lane)
+            if ((bits >> lane & 1) != 0 && (slot == none || kSlotOfHaddLane[lane] < slot)) slot = kSlotOfHaddLane[lane];
+        first[bits] = static_cast<std::uint8_t>(slot);
+    }
+    return first;
+}();
 // The largest lane of m in every lane (VMAXPS over the halves, pairs and neighbours); m must
 // hold no NaN.
 [[gnu::target("avx2"), gnu::always_inline]] inline Float8 max8(Float8 m) {
@@ -166,6 +183,15 @@ inline bool has_avx2() { return avx2_paths_on(); }
     m = t > m ? t : m;
     t = __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
     return t > m ? t : m;
+}
+// The same for the smallest lane.
+[[gnu::target("avx2"), gnu::always_inline]] inline Float8 min8(Float8 m) {
+    Float8 t = __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3);
+    m = t < m ? t : m;
+    t = __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5);
+    m = t < m ? t : m;
+    t = __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
+    return t < m ? t : m;
 }
 #endif
 
