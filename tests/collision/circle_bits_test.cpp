@@ -217,6 +217,41 @@ TEST(CircleBits, PolygonCircleEveryVertexCount) {
     }
 }
 
+// Every way of making a Polygon keeps the slots past its vertices zero, which the AVX2 path's
+// early out counts on (a nonzero normal there would be a face of its own): make_polygon, the box
+// conversions, moved, moved_into (into a polygon of another count and of the same count),
+// rotated and transformed.
+TEST(CircleBits, PolygonsMadeEveryWay) {
+    Draw g;
+    Rng rng(0x510757u);
+    Polygon reused = test::random_polygon(rng);  // moved_into's target, its count changing
+    for (int k = 0; k < 3000; ++k) {
+        const Polygon base = test::random_polygon(rng, 10.0f);
+        const Vec2 shift{g.uniform(-5.0f, 5.0f), g.uniform(-5.0f, 5.0f)};
+        const float angle = g.uniform(-3.0f, 3.0f);
+        const Transform xf{shift, Rot::from_angle(angle)};
+        base.moved_into(shift, reused);
+        const Polygon same_count = reused;
+        base.moved_into(-shift, reused);  // the same count: only the vertices are written
+        const Polygon made[] = {base,
+                                to_polygon(Obb{shift, {g.uniform(0.5f, 4.0f), g.uniform(0.5f, 4.0f)}, angle}),
+                                to_polygon(Aabb{shift, shift + Vec2{2.0f, 3.0f}}),
+                                base.moved(shift),
+                                same_count,
+                                reused,
+                                base.rotated(xf.q),
+                                base.transformed(xf)};
+        for (const Polygon& poly : made) {
+            for (int j = 0; j < 20; ++j) {
+                const Circle circle{{g.uniform(-25.0f, 25.0f), g.uniform(-25.0f, 25.0f)}, g.uniform(0.0f, 8.0f)};
+                SCOPED_TRACE(testing::Message() << poly.count() << " vertices, case " << k);
+                ASSERT_TRUE(same_bits(collide(poly, circle), scalar_polygon_circle(poly, circle)));
+            }
+        }
+        reused = test::random_polygon(rng);  // a new count, most of the time
+    }
+}
+
 TEST(CircleBits, CircleCircle) {
     Draw g;
     for (int k = 0; k < 200000; ++k) {

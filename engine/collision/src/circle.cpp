@@ -213,13 +213,25 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     return {best[0], index[0]};
 }
 
+// A hit for the polygon-circle pair: hit_with(depth, n) with n in lanes 0-1 of `normal` (lanes
+// 2-3 zero), and valid(b) asked here, of a would-be hit only: r^2 finite (so r is) joins the
+// depth and normal in one test of lanes for finiteness, and r >= 0 is tested beside it. A centre
+// that is not finite needs no test of its own: every separation is then +-inf or NaN, so either
+// the early out takes it (+inf > r) or the largest is -inf, and the depth r + inf is not finite.
+inline Manifold polygon_circle_hit(const Circle& b, float depth, Float4 normal) {
+    const Float4 lanes = {depth, normal[0], normal[1], b.radius * b.radius};
+    if ((detail::lane_bits((lanes - lanes) == Float4{}) != 0xfu) | !(b.radius >= 0.0f)) return {};
+    const Float4 n = detail::plain_zeros(normal);
+    return Manifold{true, depth > 0.0f ? depth : 0.0f, Vec2{n[0], n[1]}};
+}
+
 // collide(Polygon, Circle) once the centre is within r of every face's line, given the largest
 // separation max_sep, the first face at it, and the nearest-vertex search (run only if needed).
 template <class Nearest>
-[[gnu::always_inline]] inline Manifold polygon_circle_answer(const Polygon& a, const Circle& b, Float4 cc, float max_sep, int max_edge,
-                                      Nearest&& nearest_vertex_of) {
-    const Vec2 c = b.center;
-    if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);  // centre inside
+[[gnu::always_inline]] inline Manifold polygon_circle_answer(const Polygon& a, const Circle& b, Float4 cc, float max_sep,
+                                                             int max_edge, Nearest&& nearest_vertex_of) {
+    const Float4 face_normal = lanes_xy(a.normals()[max_edge]);
+    if (max_sep <= 0.0f) return polygon_circle_hit(b, b.radius - max_sep, face_normal);  // centre inside
     // Beside the edge of greatest separation (c projects inside it, tested from each end so
     // that a long edge rounds neither), that edge is the nearest feature: its own normal and
     // the separation are exact where normalising c - p would round.
@@ -230,23 +242,30 @@ template <class Nearest>
     const Float4 m =
         (cc - __builtin_shufflevector(p0, p1, 0, 1, 4, 5)) * __builtin_shufflevector(e, e, 0, 1, 0, 1);
     const Float4 along = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
-    if ((along[0] > 0.0f) & (along[2] < 0.0f)) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
+    if ((along[0] > 0.0f) & (along[2] < 0.0f)) return polygon_circle_hit(b, b.radius - max_sep, face_normal);
     // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
     // plain difference of points (exact for nearby floats).
     const NearestVertex nearest = nearest_vertex_of();
     const float dist2 = nearest.dist2;
     if (!(dist2 <= b.radius * b.radius)) return {};
     const int vertex = nearest.vertex;
-    const Vec2 d = c - a.points()[vertex];  // used only when dist2 is finite
+    const Float4 d = cc - lanes_xy(a.points()[vertex]);  // lanes 0-1; used only when dist2 is finite
     // A direction outside the vertex's cone of normals means the centre is on the vertex up
     // to rounding: the nearer of its two faces' normals. (normalize_or(d, ...) with the one
-    // square root that the depth needs too.)
+    // square root that the depth needs too, and one DIVPS for both components.)
     const Vec2 n_prev = a.normals()[detail::prev_index(vertex, a.count())];
     const Vec2 n_next = a.normals()[vertex];
     const float len = detail::sqrt_nonneg(dist2);
-    Vec2 n = len > 0.0f && len < INFINITY ? Vec2{d.x / len, d.y / len} : a.normals()[max_edge];
-    if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) n = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
-    return hit_with(b.radius - len, n);
+    Float4 n4 = face_normal;
+    if (len > 0.0f && len < INFINITY) {
+        const Float4 q = d / Float4{len, len, len, len};
+        n4 = Float4{q[0], q[1], 0.0f, 0.0f};
+    }
+    const Vec2 n{n4[0], n4[1]};
+    if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f)
+        n4 = lanes_xy(dot(n, n_prev) >= dot(n, n_next) ? a.normals()[detail::prev_index(vertex, a.count())]
+                                                        : a.normals()[vertex]);
+    return polygon_circle_hit(b, b.radius - len, n4);
 }
 
 // collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
@@ -254,7 +273,6 @@ template <class Nearest>
 // is a short function with nothing to save.
 [[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, Float4 cc, Float4 s0,
                                                Float4 s1, Float4 s2, Float4 s3) {
-    if (!valid(b)) return {};
     const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
     Float4 top = lane_max(s1, lane_max(s0, none));
     if (a.count() > 8) top = lane_max(s3, lane_max(s2, top));  // else copies of s0
@@ -289,19 +307,12 @@ constexpr auto kDeadHaddLanes = [] {
 // term plus its y term: VHADDPS adds y + x, the same sum), NaN past the last vertex; the folds
 // see NaN as -inf (faces) or +inf (vertices), as the SSE path's comparisons skip it, and take
 // the first lane equal to the result, in slot order: the same bits.
-[[gnu::target("avx2")]] Manifold polygon_circle8(const Polygon& a, const Circle& b) {
-    const __m256 cc = _mm256_castpd_ps(_mm256_broadcast_sd(reinterpret_cast<const double*>(&b.center)));
-    const float* points = &a.points().data()->x;  // 8 slots read: a Polygon has 16
-    const float* normals = &a.normals().data()->x;
-    const __m256 o0 = _mm256_sub_ps(cc, _mm256_loadu_ps(points));  // c - p, slots 0-3 and 4-7
-    const __m256 o1 = _mm256_sub_ps(cc, _mm256_loadu_ps(points + 8));
+// Past the early out (kept out of line, a tail call, the lanes in registers, so that the common
+// early out is a short function whose miss needs no packing of a hit's fields).
+[[gnu::target("avx2"), gnu::noinline]] Manifold polygon_circle8_near(const Polygon& a, const Circle& b, __m256 side,
+                                                                   __m256 o0, __m256 o1) {
     const __m256 dead = _mm256_loadu_ps(reinterpret_cast<const float*>(kDeadHaddLanes[a.count()].data()));
-    const __m256 side = _mm256_or_ps(
-        _mm256_hadd_ps(_mm256_mul_ps(_mm256_loadu_ps(normals), o0), _mm256_mul_ps(_mm256_loadu_ps(normals + 8), o1)),
-        dead);
-    // An edge normal separates: early out.
-    if (_mm256_movemask_ps(_mm256_cmp_ps(side, _mm256_set1_ps(b.radius), _CMP_GT_OQ)) != 0) return {};
-    if (!valid(b)) return {};
+    side = _mm256_or_ps(side, dead);
     const __m256 minus_inf = _mm256_set1_ps(-INFINITY);
     const __m256 top = detail::max8(_mm256_max_ps(side, minus_inf));  // VMAXPS gives -inf for NaN
     const float max_sep = _mm256_cvtss_f32(top);
@@ -314,6 +325,21 @@ constexpr auto kDeadHaddLanes = [] {
         return NearestVertex{_mm256_cvtss_f32(least),
                              detail::kFirstHaddSlot<0>[_mm256_movemask_ps(_mm256_cmp_ps(d2, least, _CMP_EQ_OQ))]};
     });
+}
+
+[[gnu::target("avx2")]] Manifold polygon_circle8(const Polygon& a, const Circle& b) {
+    const __m256 cc = _mm256_castpd_ps(_mm256_broadcast_sd(reinterpret_cast<const double*>(&b.center)));
+    const float* points = &a.points().data()->x;  // 8 slots read: a Polygon has 16
+    const float* normals = &a.normals().data()->x;
+    const __m256 o0 = _mm256_sub_ps(cc, _mm256_loadu_ps(points));  // c - p, slots 0-3 and 4-7
+    const __m256 o1 = _mm256_sub_ps(cc, _mm256_loadu_ps(points + 8));
+    const __m256 side =
+        _mm256_hadd_ps(_mm256_mul_ps(_mm256_loadu_ps(normals), o0), _mm256_mul_ps(_mm256_loadu_ps(normals + 8), o1));
+    // An edge normal separates: early out. The lanes past the last face need no mask here: their
+    // normals are zero (a Polygon keeps its unused slots zero), so they hold +-0 or NaN, beyond no
+    // valid radius (and a negative radius is a miss anyway).
+    if (_mm256_movemask_ps(_mm256_cmp_ps(side, _mm256_broadcast_ss(&b.radius), _CMP_GT_OQ)) != 0) return {};
+    return polygon_circle8_near(a, b, side, o0, o1);
 }
 #endif
 }  // namespace
