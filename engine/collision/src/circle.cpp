@@ -300,26 +300,40 @@ constexpr auto kDeadHaddLanes = [] {
     return dead;
 }();
 
-// collide(Polygon, Circle) for 3 to 8 vertices with AVX2 (chosen at run time): every face's
-// separation in one register instead of two, by VHADDPS over the slots as stored, the centre
-// broadcast straight from the Circle, and, past the early out, the largest separation and the
-// nearest vertex by folds over the lanes. The lanes do the SSE path's arithmetic (each slot's x
-// term plus its y term: VHADDPS adds y + x, the same sum), NaN past the last vertex; the folds
-// see NaN as -inf (faces) or +inf (vertices), as the SSE path's comparisons skip it, and take
-// the first lane equal to the result, in slot order: the same bits.
-// Past the early out (kept out of line, a tail call, the lanes in registers, so that the common
-// early out is a short function whose miss needs no packing of a hit's fields).
-[[gnu::target("avx2"), gnu::noinline]] Manifold polygon_circle8_near(const Polygon& a, const Circle& b, __m256 side,
-                                                                   __m256 o0, __m256 o1) {
+// c - p for slots 0-3 and 4-7 (x, y pairs as stored), the centre broadcast straight from the
+// Circle, and each face's separation dot(n, c - p): each slot's x term plus its y term (VHADDPS
+// adds y + x, the same sum), in VHADDPS's lane order.
+struct CircleLanes {
+    __m256 o0, o1, side;
+};
+[[gnu::target("avx2"), gnu::always_inline]] inline CircleLanes circle_lanes(const Polygon& a, const Circle& b) {
+    const __m256 cc = _mm256_castpd_ps(_mm256_broadcast_sd(reinterpret_cast<const double*>(&b.center)));
+    const float* points = &a.points().data()->x;  // 8 slots read: a Polygon has 16
+    const float* normals = &a.normals().data()->x;
+    CircleLanes l;
+    l.o0 = _mm256_sub_ps(cc, _mm256_loadu_ps(points));
+    l.o1 = _mm256_sub_ps(cc, _mm256_loadu_ps(points + 8));
+    l.side = _mm256_hadd_ps(_mm256_mul_ps(_mm256_loadu_ps(normals), l.o0),
+                            _mm256_mul_ps(_mm256_loadu_ps(normals + 8), l.o1));
+    return l;
+}
+
+// Past the early out: kept out of line, so that the common early out is a short function whose
+// miss needs no packing of a hit's fields. The lanes are made again rather than passed: GCC
+// gives a function with 256-bit arguments no VZEROUPPER on return, and the SSE code after it
+// then waits on the upper halves (the world step's sincosf ran 60% slower).
+[[gnu::target("avx2"), gnu::noinline]] Manifold polygon_circle8_near(const Polygon& a, const Circle& b) {
+    const CircleLanes l = circle_lanes(a, b);
     const __m256 dead = _mm256_loadu_ps(reinterpret_cast<const float*>(kDeadHaddLanes[a.count()].data()));
-    side = _mm256_or_ps(side, dead);
+    const __m256 side = _mm256_or_ps(l.side, dead);
     const __m256 minus_inf = _mm256_set1_ps(-INFINITY);
     const __m256 top = detail::max8(_mm256_max_ps(side, minus_inf));  // VMAXPS gives -inf for NaN
     const float max_sep = _mm256_cvtss_f32(top);
     const int max_edge = detail::kFirstHaddSlot<0>[_mm256_movemask_ps(_mm256_cmp_ps(side, top, _CMP_EQ_OQ))];
     const Float4 c4 = {b.center.x, b.center.y, b.center.x, b.center.y};
     return polygon_circle_answer(a, b, c4, max_sep, max_edge, [&]() __attribute__((target("avx2"))) {
-        const __m256 d2 = _mm256_or_ps(_mm256_hadd_ps(_mm256_mul_ps(o0, o0), _mm256_mul_ps(o1, o1)), dead);
+        const __m256 d2 =
+            _mm256_or_ps(_mm256_hadd_ps(_mm256_mul_ps(l.o0, l.o0), _mm256_mul_ps(l.o1, l.o1)), dead);
         const __m256 least = detail::min8(_mm256_min_ps(d2, _mm256_set1_ps(INFINITY)));  // VMINPS: +inf for NaN
         // The first vertex at the least distance (when it is +inf, any: that is a miss).
         return NearestVertex{_mm256_cvtss_f32(least),
@@ -327,19 +341,19 @@ constexpr auto kDeadHaddLanes = [] {
     });
 }
 
+// collide(Polygon, Circle) for 3 to 8 vertices with AVX2 (chosen at run time): every face's
+// separation in one register instead of two, and, past the early out, the largest separation
+// and the nearest vertex by folds over the lanes. The lanes do the SSE path's arithmetic, NaN
+// past the last vertex; the folds see NaN as -inf (faces) or +inf (vertices), as the SSE
+// path's comparisons skip it, and take the first lane equal to the result, in slot order: the
+// same bits.
 [[gnu::target("avx2")]] Manifold polygon_circle8(const Polygon& a, const Circle& b) {
-    const __m256 cc = _mm256_castpd_ps(_mm256_broadcast_sd(reinterpret_cast<const double*>(&b.center)));
-    const float* points = &a.points().data()->x;  // 8 slots read: a Polygon has 16
-    const float* normals = &a.normals().data()->x;
-    const __m256 o0 = _mm256_sub_ps(cc, _mm256_loadu_ps(points));  // c - p, slots 0-3 and 4-7
-    const __m256 o1 = _mm256_sub_ps(cc, _mm256_loadu_ps(points + 8));
-    const __m256 side =
-        _mm256_hadd_ps(_mm256_mul_ps(_mm256_loadu_ps(normals), o0), _mm256_mul_ps(_mm256_loadu_ps(normals + 8), o1));
+    const __m256 side = circle_lanes(a, b).side;
     // An edge normal separates: early out. The lanes past the last face need no mask here: their
     // normals are zero (a Polygon keeps its unused slots zero), so they hold +-0 or NaN, beyond no
     // valid radius (and a negative radius is a miss anyway).
     if (_mm256_movemask_ps(_mm256_cmp_ps(side, _mm256_broadcast_ss(&b.radius), _CMP_GT_OQ)) != 0) return {};
-    return polygon_circle8_near(a, b, side, o0, o1);
+    return polygon_circle8_near(a, b);
 }
 #endif
 }  // namespace

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -132,18 +133,23 @@ inline Float4 plain_zeros(Float4 v) { return v + Float4{0.0f, 0.0f, 0.0f, 0.0f};
 // function, never -march: it changes which instructions run, not the rounding; no FMA).
 using Float8 = float __attribute__((vector_size(32)));
 using Int8 = int __attribute__((vector_size(32)));
-// Whether the AVX2 paths run: the CPU's answer, checked once at start-up; detail::use_avx2_paths
-// lets tests turn them off to compare against the SSE paths. A plain variable rather than a
-// function's static, so that reading it is one load with no guard (a function's static made
-// every dispatching function keep registers for the guard's call). Before it is set, e.g. from
-// another file's static initialiser, it reads false: the SSE paths, with the same answers.
-inline bool cpu_has_avx2() {
-    __builtin_cpu_init();  // may run before libgcc's own constructor has
-    return __builtin_cpu_supports("avx2");
+// Whether the AVX2 paths run: the CPU's answer, asked once, on first use (no static initialiser:
+// one per file would move every function after them and change the world step's timing with
+// its code unchanged); detail::use_avx2_paths lets tests turn them off to compare against the
+// SSE paths. A plain atomic (relaxed: one MOV to read), -1 until asked, rather than a
+// function's static, so that reading it needs no guard (whose call made every dispatching
+// function keep registers).
+inline std::atomic<signed char> avx2_state{-1};
+[[gnu::cold, gnu::noinline]] inline bool ask_cpu_for_avx2() {
+    __builtin_cpu_init();
+    const bool has = __builtin_cpu_supports("avx2");
+    avx2_state.store(has ? 1 : 0, std::memory_order_relaxed);
+    return has;
 }
-inline bool avx2_paths_flag = cpu_has_avx2();
-inline bool& avx2_paths_on() { return avx2_paths_flag; }
-inline bool has_avx2() { return avx2_paths_on(); }
+inline bool has_avx2() {
+    const signed char state = avx2_state.load(std::memory_order_relaxed);
+    return state > 0 || (state < 0 && ask_cpu_for_avx2());
+}
 // Bit i set when lane i of a comparison's result is true (VMOVMSKPS).
 [[gnu::target("avx2"), gnu::always_inline]] inline unsigned lane_bits8(Int8 m) {
     return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(m)));
