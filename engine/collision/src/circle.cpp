@@ -213,14 +213,16 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     return {best[0], index[0]};
 }
 
-// A hit for the polygon-circle pair: hit_with(depth, n) with n in lanes 0-1 of `normal` (lanes
-// 2-3 zero), and valid(b) asked here, of a would-be hit only: r^2 finite (so r is) joins the
-// depth and normal in one test of lanes for finiteness, and r >= 0 is tested beside it. A centre
-// that is not finite needs no test of its own: every separation is then +-inf or NaN, so either
-// the early out takes it (+inf > r) or the largest is -inf, and the depth r + inf is not finite.
+// A hit for the polygon-circle pair: hit_with(depth, n) with n in lanes 0-1 of `normal`, and
+// valid(b) asked here, of a would-be hit only. Every normal offered is finite (a face's, or the
+// centre's direction from a vertex within r, which is finite), so the test of finiteness is
+// of the depth and of r^2 (so r is finite), in one sum of x - x terms (see detail::all_finite),
+// and r >= 0 beside it. A centre that is not finite needs no test of its own: every separation
+// is then +-inf or NaN, so either the early out takes it (+inf > r) or the largest is -inf, and
+// the depth r + inf is not finite.
 inline Manifold polygon_circle_hit(const Circle& b, float depth, Float4 normal) {
-    const Float4 lanes = {depth, normal[0], normal[1], b.radius * b.radius};
-    if ((detail::lane_bits((lanes - lanes) == Float4{}) != 0xfu) | !(b.radius >= 0.0f)) return {};
+    const float r2 = b.radius * b.radius;
+    if (!(((depth - depth) + (r2 - r2) == 0.0f) & (b.radius >= 0.0f))) return {};
     const Float4 n = detail::plain_zeros(normal);
     return Manifold{true, depth > 0.0f ? depth : 0.0f, Vec2{n[0], n[1]}};
 }
@@ -304,13 +306,14 @@ constexpr auto kDeadHaddLanes = [] {
 // Circle, and each face's separation dot(n, c - p): each slot's x term plus its y term (VHADDPS
 // adds y + x, the same sum), in VHADDPS's lane order.
 struct CircleLanes {
-    __m256 o0, o1, side;
+    __m256 cc, o0, o1, side;  // cc: the centre's x, y in every pair of lanes
 };
 [[gnu::target("avx2"), gnu::always_inline]] inline CircleLanes circle_lanes(const Polygon& a, const Circle& b) {
     const __m256 cc = _mm256_castpd_ps(_mm256_broadcast_sd(reinterpret_cast<const double*>(&b.center)));
     const float* points = &a.points().data()->x;  // 8 slots read: a Polygon has 16
     const float* normals = &a.normals().data()->x;
     CircleLanes l;
+    l.cc = cc;
     l.o0 = _mm256_sub_ps(cc, _mm256_loadu_ps(points));
     l.o1 = _mm256_sub_ps(cc, _mm256_loadu_ps(points + 8));
     l.side = _mm256_hadd_ps(_mm256_mul_ps(_mm256_loadu_ps(normals), l.o0),
@@ -330,7 +333,7 @@ struct CircleLanes {
     const __m256 top = detail::max8(_mm256_max_ps(side, minus_inf));  // VMAXPS gives -inf for NaN
     const float max_sep = _mm256_cvtss_f32(top);
     const int max_edge = detail::kFirstHaddSlot<0>[_mm256_movemask_ps(_mm256_cmp_ps(side, top, _CMP_EQ_OQ))];
-    const Float4 c4 = {b.center.x, b.center.y, b.center.x, b.center.y};
+    const Float4 c4 = reinterpret_cast<Float4>(_mm256_castps256_ps128(l.cc));
     return polygon_circle_answer(a, b, c4, max_sep, max_edge, [&]() __attribute__((target("avx2"))) {
         const __m256 d2 =
             _mm256_or_ps(_mm256_hadd_ps(_mm256_mul_ps(l.o0, l.o0), _mm256_mul_ps(l.o1, l.o1)), dead);
