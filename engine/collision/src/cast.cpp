@@ -6,13 +6,14 @@
 // parametric crossing of 09-78, masks row band by row band.
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <new>
-#include <bit>
-#include <cmath>
 #include <utility>
+#include <variant>
 
 #include "internal.h"
 
@@ -242,13 +243,13 @@ inline CastHit make_hit(__m128 t, __m128 point, __m128 normal) {
     return h;
 }
 
-// The loop's answer for 3 to 8 edges, one to a lane of AVX2 (chosen at run time): one VDIVPS for
-// every t, one fold over the lanes, lane masks, and a branch on hit or miss where the loop
-// branches on every edge. The lanes do the loop's arithmetic with one sign turned: side = the
-// sum of n * (from - p) is -num exactly (negating a product or a sum is exact), and tn = side /
-// den is -t; every test below is the loop's with the sign of t turned. The loop's max and min
-// do not depend on the order of the edges, so they are the same bits, and the first edge
-// reaching the max is the first lane equal to it.
+// The loop's answer (Cyrus-Beck, 09-103) for 3 to 8 edges, one to a lane of AVX2 (chosen at run
+// time): one VDIVPS for every t, one fold over the lanes, lane masks, and a branch on hit or
+// miss where the loop branches on every edge. The lanes do the loop's arithmetic with one sign
+// turned: side = the sum of n * (from - p) is -num exactly (negating a product or a sum is
+// exact), and tn = side / den is -t; every test below is the loop's with the sign of t turned.
+// The loop's max and min do not depend on the order of the edges, so they are the same bits,
+// and the first edge reaching the max is the first lane equal to it.
 // What is tested is arranged for a short chain from the loads to the branch (the queries
 // overlap only as far as the chains let them): an edge is taken as entering from its signs,
 // den < 0 and num < 0, known before the division, rather than from t > 0 after it; the same
@@ -358,6 +359,7 @@ JOSTLE_OPAQUE CastHit* jostle_cast_shape_to(CastHit* out, double from, double to
 CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) __attribute__((alias("jostle_cast_polygon_to")));
 CastHit cast(Vec2 from, Vec2 to, const Shape& s) __attribute__((alias("jostle_cast_shape_to")));
 #pragma GCC diagnostic pop
+#undef JOSTLE_OPAQUE
 #else
 CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
     CastHit h;
@@ -367,6 +369,7 @@ CastHit cast(Vec2 from, Vec2 to, const Shape& s) {
     CastHit h;
     return *jostle_cast_shape_to(&h, std::bit_cast<double>(from), std::bit_cast<double>(to), s);
 }
+#undef JOSTLE_OPAQUE
 #endif
 
 CastHit cast(Vec2 from, Vec2 to, const Segment& seg) {
@@ -419,6 +422,5 @@ CastHit cast(Vec2 from, Vec2 to, const PlacedMask& m) {
     if (best.hit && best.t == 0.0f) best.normal = {};  // started on a set pixel
     return best;
 }
-
 
 }  // namespace jostle

@@ -344,7 +344,7 @@ struct CircleLanes {
     });
 }
 
-// collide(Polygon, Circle) for 3 to 8 vertices with AVX2 (chosen at run time): every face's
+// collide(Polygon, Circle) (09-90) for 3 to 8 vertices with AVX2 (chosen at run time): every face's
 // separation in one register instead of two, and, past the early out, the largest separation
 // and the nearest vertex by folds over the lanes. The lanes do the SSE path's arithmetic, NaN
 // past the last vertex; the folds see NaN as -inf (faces) or +inf (vertices), as the SSE
