@@ -321,12 +321,12 @@ struct CircleLanes {
     return l;
 }
 
-// Past the early out: kept out of line, so that the common early out is a short function whose
-// miss needs no packing of a hit's fields. The lanes are made again rather than passed: GCC
-// gives a function with 256-bit arguments no VZEROUPPER on return, and the SSE code after it
-// then waits on the upper halves (the world step's sincosf ran 60% slower).
-[[gnu::target("avx2"), gnu::noinline]] Manifold polygon_circle8_near(const Polygon& a, const Circle& b) {
-    const CircleLanes l = circle_lanes(a, b);
+// Past the early out, inlined (GCC still gives the early out's miss a short return of its own).
+// Not a separate function taking the lanes: GCC gives a function with 256-bit arguments no
+// VZEROUPPER, and the SSE code after it then waits on the upper halves (the world step's sincosf
+// ran 60% slower).
+[[gnu::target("avx2"), gnu::always_inline]] inline Manifold polygon_circle8_near(const Polygon& a, const Circle& b,
+                                                                              const CircleLanes& l) {
     const __m256 dead = _mm256_loadu_ps(reinterpret_cast<const float*>(kDeadHaddLanes[a.count()].data()));
     const __m256 side = _mm256_or_ps(l.side, dead);
     const __m256 minus_inf = _mm256_set1_ps(-INFINITY);
@@ -351,12 +351,13 @@ struct CircleLanes {
 // path's comparisons skip it, and take the first lane equal to the result, in slot order: the
 // same bits.
 [[gnu::target("avx2")]] Manifold polygon_circle8(const Polygon& a, const Circle& b) {
-    const __m256 side = circle_lanes(a, b).side;
+    const CircleLanes l = circle_lanes(a, b);
+    const __m256 side = l.side;
     // An edge normal separates: early out. The lanes past the last face need no mask here: their
     // normals are zero (a Polygon keeps its unused slots zero), so they hold +-0 or NaN, beyond no
     // valid radius (and a negative radius is a miss anyway).
     if (_mm256_movemask_ps(_mm256_cmp_ps(side, _mm256_broadcast_ss(&b.radius), _CMP_GT_OQ)) != 0) return {};
-    return polygon_circle8_near(a, b);
+    return polygon_circle8_near(a, b, l);
 }
 #endif
 }  // namespace
