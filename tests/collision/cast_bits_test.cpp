@@ -1,8 +1,10 @@
-// cast(Polygon)'s AVX2 path (cast.cpp: every edge in a lane, one VDIVPS for every t, the max
-// and min over lanes) against the plain loop, bit for bit: hit, t, point and normal, on seeded
+// cast(Polygon)'s AVX2 path (cast.cpp: every edge in a lane, one VDIVPS for every t, a min over
+// lanes and lane masks) against the plain loop, bit for bit: hit, t, point and normal, on seeded
 // random casts against polygons of 3..16 vertices, with starts and ends on vertices, on edges,
 // along edges (parallel), on a grid of integers (ties between edges), zero-length motions, and
-// inputs past the limits (NaN, infinities, huge and denormal coordinates).
+// inputs past the limits (NaN, infinities, huge and denormal coordinates); and against polygons
+// made every way the module makes them, since the AVX2 path reads the unused slots up to 8 and
+// counts on their normals being zero.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -108,6 +110,54 @@ TEST(CastPolygonBits, Avx2AndLoopAgree) {
     detail::use_avx2_paths(true);
     EXPECT_GT(compared, 1500000);
     EXPECT_GT(hits, compared / 10);  // the generators reach the polygons
+}
+
+// Every way of making a Polygon keeps the slots past its vertices zero (the AVX2 path reads 8
+// slots, and a nonzero normal there would act as an extra edge): make_polygon, the box
+// conversions, moved, moved_into (into a polygon of another count and of the same count),
+// rotated and transformed.
+TEST(CastPolygonBits, PolygonsMadeEveryWayAgreeWithTheLoop) {
+    if (!detail::use_avx2_paths(true)) GTEST_SKIP() << "this CPU has no AVX2: the loop is the only path";
+    Rng rng(0x510757u);
+    long compared = 0;
+    Polygon reused = test::random_polygon(rng);  // moved_into's target, its count changing
+    for (int n = 0; n < 2000 && !HasFailure(); ++n) {
+        const Polygon base = test::random_polygon(rng, 10.0f);
+        const Vec2 shift{rng.uniform(-5.0f, 5.0f), rng.uniform(-5.0f, 5.0f)};
+        const float angle = rng.uniform(-3.0f, 3.0f);
+        const Transform xf{shift, Rot::from_angle(angle)};
+        base.moved_into(shift, reused);
+        const Polygon same_count = reused;
+        base.moved_into(-shift, reused);  // the same count: only the vertices are written
+        const Polygon made[] = {base,
+                                to_polygon(Obb{shift, {rng.uniform(0.5f, 4.0f), rng.uniform(0.5f, 4.0f)}, angle}),
+                                to_polygon(Aabb{shift, shift + Vec2{2.0f, 3.0f}}),
+                                base.moved(shift),
+                                same_count,
+                                reused,
+                                base.rotated(xf.q),
+                                base.transformed(xf)};
+        for (const Polygon& poly : made) {
+            ASSERT_GE(poly.count(), 3);
+            for (int k = 0; k < 20; ++k) {
+                const Vec2 from = pick_point(rng, poly);
+                const Vec2 to = pick_point(rng, poly);
+                detail::use_avx2_paths(true);
+                const CastHit simd = cast(from, to, poly);
+                detail::use_avx2_paths(false);
+                const CastHit loop = cast(from, to, poly);
+                ++compared;
+                if (!same_bits(simd, loop)) {
+                    ADD_FAILURE() << "polygon " << n << " of " << poly.count() << " vertices: AVX2 hit " << simd.hit
+                                  << " t " << simd.t << ", loop hit " << loop.hit << " t " << loop.t;
+                    break;
+                }
+            }
+        }
+        reused = test::random_polygon(rng);  // a new count, most of the time
+    }
+    detail::use_avx2_paths(true);
+    EXPECT_GT(compared, 300000);
 }
 
 }  // namespace

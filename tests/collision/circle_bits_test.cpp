@@ -1,6 +1,7 @@
 // The circle pairs' lane-parallel code (circle.cpp: four faces or vertices to a register with
-// NaN in the slots past the last, x and y side by side, one DIVPS for a normal) against the
-// plain scalar loops it replaced, bit for bit: hit, depth and normal, on seeded random shapes of
+// NaN in the slots past the last, or eight with AVX2 for up to 8 vertices, x and y side by side,
+// one DIVPS for a normal) against the plain scalar loops it replaced, bit for bit (polygons on
+// both the SSE and the AVX2 path): hit, depth and normal, on seeded random shapes of
 // every vertex count, centres inside, beside edges, in vertex regions, on vertices and on a
 // grid of integers (ties), and on inputs past the limits (NaN, infinities, overflow).
 #include <gtest/gtest.h>
@@ -206,8 +207,48 @@ TEST(CircleBits, PolygonCircleEveryVertexCount) {
             }
             const Circle circle{{g.wild(c.x), g.wild(c.y)}, g.wild(r)};
             SCOPED_TRACE(testing::Message() << count << " vertices, case " << k);
-            ASSERT_TRUE(same_bits(collide(poly, circle), scalar_polygon_circle(poly, circle)));
+            const Manifold want = scalar_polygon_circle(poly, circle);
+            ASSERT_TRUE(same_bits(collide(poly, circle), want));
+            if (detail::use_avx2_paths(false)) ADD_FAILURE() << "the AVX2 paths did not turn off";
+            const Manifold sse = collide(poly, circle);
+            detail::use_avx2_paths(true);
+            ASSERT_TRUE(same_bits(sse, want)) << "(the SSE path)";
         }
+    }
+}
+
+// Every way of making a Polygon keeps the slots past its vertices zero, which the AVX2 path's
+// early out counts on (a nonzero normal there would be a face of its own): make_polygon, the box
+// conversions, moved, moved_into (into a polygon of another count and of the same count),
+// rotated and transformed.
+TEST(CircleBits, PolygonsMadeEveryWay) {
+    Draw g;
+    Rng rng(0x510757u);
+    Polygon reused = test::random_polygon(rng);  // moved_into's target, its count changing
+    for (int k = 0; k < 3000; ++k) {
+        const Polygon base = test::random_polygon(rng, 10.0f);
+        const Vec2 shift{g.uniform(-5.0f, 5.0f), g.uniform(-5.0f, 5.0f)};
+        const float angle = g.uniform(-3.0f, 3.0f);
+        const Transform xf{shift, Rot::from_angle(angle)};
+        base.moved_into(shift, reused);
+        const Polygon same_count = reused;
+        base.moved_into(-shift, reused);  // the same count: only the vertices are written
+        const Polygon made[] = {base,
+                                to_polygon(Obb{shift, {g.uniform(0.5f, 4.0f), g.uniform(0.5f, 4.0f)}, angle}),
+                                to_polygon(Aabb{shift, shift + Vec2{2.0f, 3.0f}}),
+                                base.moved(shift),
+                                same_count,
+                                reused,
+                                base.rotated(xf.q),
+                                base.transformed(xf)};
+        for (const Polygon& poly : made) {
+            for (int j = 0; j < 20; ++j) {
+                const Circle circle{{g.uniform(-25.0f, 25.0f), g.uniform(-25.0f, 25.0f)}, g.uniform(0.0f, 8.0f)};
+                SCOPED_TRACE(testing::Message() << poly.count() << " vertices, case " << k);
+                ASSERT_TRUE(same_bits(collide(poly, circle), scalar_polygon_circle(poly, circle)));
+            }
+        }
+        reused = test::random_polygon(rng);  // a new count, most of the time
     }
 }
 

@@ -5,9 +5,15 @@
 // polygons by clipping against every edge's half-plane (Cyrus-Beck), segments by the
 // parametric crossing of 09-78, masks row band by row band.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <new>
 #include <utility>
+#include <variant>
 
 #include "internal.h"
 
@@ -199,65 +205,172 @@ EdgeClip clip_edges(Vec2 from, Vec2 d, const Vec2* points, const Vec2* normals, 
     return hit_at(from, d, c.t_enter, c.normal);
 }
 
-// The plain version, for polygons of more than 8 vertices and CPUs without AVX2 (not inlined:
-// the AVX2 path then needs no registers saved for it).
-[[gnu::noinline]] CastHit cast_polygon(Vec2 from, Vec2 to, const Polygon& poly) {
+// The plain version, for polygons of more than 8 vertices and CPUs without AVX2.
+CastHit cast_polygon(Vec2 from, Vec2 to, const Polygon& poly) {
     if (!valid(poly)) return {};
     const Vec2 d = to - from;
     return polygon_hit(from, d, poly, clip_edges(from, d, poly.points().data(), poly.normals().data(), poly.count()));
 }
 
 #ifdef JOSTLE_AVX2_PATHS
-using detail::Float8;
-using detail::Int8;
+// The first edge a lane mask in VHADDPS's order names, or 15 when it names none (an unused slot
+// for up to 8 vertices, so a zero normal).
+constexpr const auto& kFirstEdge = detail::kFirstHaddSlot<15>;
 
-// The same for up to 8 edges, one to a lane of AVX2 (chosen at run time): one VDIVPS for every
-// t and no branch per edge (the loop's depend on the data, so they mispredict). Each lane does
-// the loop's arithmetic (no FMA, -ffp-contract=off); the loop's max and min become VMAXPS folds
-// over lanes holding only numbers (NaN and dead lanes get the starting bound), and the first
-// edge reaching the max is the first lane equal to it: the same bits as the loop.
-[[gnu::target("avx2"), gnu::always_inline]] inline EdgeClip clip_edges8(Vec2 from, Vec2 d, const Vec2* points,
-                                                                        const Vec2* normals, int count) {
-    Float8 nx, ny, px, py;
-    detail::load_xy8(normals, nx, ny);  // reads 8 slots: a Polygon has 16
-    detail::load_xy8(points, px, py);
-    const Float8 num = nx * (px - from.x) + ny * (py - from.y);
-    const Float8 den = nx * d.x + ny * d.y;
-    const Float8 t = num / den;
-    const Int8 live = Int8{0, 1, 2, 3, 4, 5, 6, 7} < count;
-    if (detail::lane_bits8(live & (den == 0.0f) & (num < 0.0f)) != 0) return {};  // parallel, outside
-    const Float8 zero{}, one = zero + 1.0f, minus_inf = zero - INFINITY;
-    const Int8 entering = live & (den < 0.0f) & (t > 0.0f);
-    const Int8 leaving = live & (den > 0.0f) & (t < 1.0f);
-    const Float8 t_enter = detail::max8(entering ? t : zero);
-    const Float8 t_exit = -detail::max8(leaving ? -t : -one);  // min(x) is -max(-x): negation is exact
-    if (!(t_enter[0] <= t_exit[0])) return {};
-    EdgeClip c;
-    c.hit = true;
-    c.t_enter = t_enter[0];
-    if (c.t_enter > 0.0f) c.normal = normals[std::countr_zero(detail::lane_bits8(entering & (t == t_enter)))];
-    const Float8 side = -num;
-    const Int8 sides = live & (side > minus_inf);  // not NaN
-    c.max_side = detail::max8(sides ? side : minus_inf)[0];
-    return c;
+// The most negative lane in every lane, for lanes that are each +0 or a negative float (no NaN):
+// their bits read as unsigned integers grow with the magnitude past the sign bit, and +0 is 0,
+// so it is the lanes' unsigned maximum (VPMAXUD: one cycle a step, where VMINPS takes four).
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256 most_negative8(__m256 v) {
+    __m256i m = _mm256_castps_si256(v);
+    m = _mm256_max_epu32(m, _mm256_permute2x128_si256(m, m, 1));
+    m = _mm256_max_epu32(m, _mm256_shuffle_epi32(m, 0x4e));
+    return _mm256_castsi256_ps(_mm256_max_epu32(m, _mm256_shuffle_epi32(m, 0xb1)));
+}
+// Normal `i` with -0 made +0 (plain_zeros), in lanes 0 and 1: one 8-byte load, and the -0 lanes
+// (bits 0x80000000) cleared by integer compare and mask, two cycles where an add of 0 takes four.
+inline __m128 plain_normal(const Vec2* normals, int i) {
+    const __m128i n = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(normals + i));
+    return _mm_castsi128_ps(_mm_andnot_si128(_mm_cmpeq_epi32(n, _mm_set1_epi32(INT32_MIN)), n));
+}
+// A hit at parameter t (lane 0), point and normal in lanes 0-1 of their registers.
+inline CastHit make_hit(__m128 t, __m128 point, __m128 normal) {
+    static_assert(offsetof(CastHit, normal) == offsetof(CastHit, point) + sizeof(Vec2));
+    CastHit h;
+    h.hit = true;
+    h.t = _mm_cvtss_f32(t);
+    const __m128 both = _mm_movelh_ps(point, normal);  // one 16-byte store for point and normal
+    std::memcpy(static_cast<void*>(&h.point), &both, sizeof both);
+    return h;
 }
 
-// The whole cast in one AVX2 function (no call, no spilled registers between the two parts).
-[[gnu::target("avx2")]] CastHit cast_polygon8(Vec2 from, Vec2 to, const Polygon& poly) {
-    if (!valid(poly)) return {};
-    const Vec2 d = to - from;
-    return polygon_hit(from, d, poly, clip_edges8(from, d, poly.points().data(), poly.normals().data(), poly.count()));
+// The loop's answer (Cyrus-Beck, 09-103) for 3 to 8 edges, one to a lane of AVX2 (chosen at run
+// time): one VDIVPS for every t, one fold over the lanes, lane masks, and a branch on hit or
+// miss where the loop branches on every edge. The lanes do the loop's arithmetic with one sign
+// turned: side = the sum of n * (from - p) is -num exactly (negating a product or a sum is
+// exact), and tn = side / den is -t; every test below is the loop's with the sign of t turned.
+// The loop's max and min do not depend on the order of the edges, so they are the same bits,
+// and the first edge reaching the max is the first lane equal to it.
+// What is tested is arranged for a short chain from the loads to the branch (the queries
+// overlap only as far as the chains let them): an edge is taken as entering from its signs,
+// den < 0 and num < 0, known before the division, rather than from t > 0 after it; the same
+// edges, but for a quotient that underflows to 0 (tn = -0: as the loop, t_enter stays 0 and
+// names no edge) and one of inf / inf, which needs |d| past what valid_motion accepts (a miss
+// whatever the lanes say). t_enter past 1 is an entering edge's t past 1, tested beside the
+// fold, not after it.
+// Slots 6-7 of a hexagon hold zero normals (a Polygon keeps its unused slots zero): side and den
+// are +-0 there (or NaN), so those lanes enter, leave and stand outside nowhere.
+// from and to come in every 64-bit lane (VBROADCASTSD).
+[[gnu::target("avx2"), gnu::always_inline]] inline CastHit cast_polygon8(__m256 f, __m256 to, const Polygon& poly) {
+    const __m256 d = _mm256_sub_ps(to, f);               // to - from, as the loop's d
+    const float* points = &poly.points().data()->x;       // 8 slots read: a Polygon has 16
+    const float* normals = &poly.normals().data()->x;
+    const __m256 n0 = _mm256_loadu_ps(normals), n1 = _mm256_loadu_ps(normals + 8);
+    // Each slot's x term plus its y term, as dot() sums them (VHADDPS adds y + x: the same sum).
+    const __m256 side = _mm256_hadd_ps(_mm256_mul_ps(n0, _mm256_sub_ps(f, _mm256_loadu_ps(points))),
+                                       _mm256_mul_ps(n1, _mm256_sub_ps(f, _mm256_loadu_ps(points + 8))));
+    const __m256 den = _mm256_hadd_ps(_mm256_mul_ps(n0, d), _mm256_mul_ps(n1, d));
+    const __m256 tn = _mm256_div_ps(side, den);
+    const __m256 zero = _mm256_setzero_ps();
+    const __m256 outside = _mm256_cmp_ps(side, zero, _CMP_GT_OQ);
+    const __m256 entering = _mm256_and_ps(_mm256_cmp_ps(den, zero, _CMP_LT_OQ), outside);
+    const __m256 tn_enter = most_negative8(_mm256_and_ps(entering, tn));  // -t_enter (+0 for none)
+    // A miss: parallel to an edge outside it, t_enter past 1, or a leaving edge before t_enter.
+    const __m256 parallel_outside = _mm256_and_ps(_mm256_cmp_ps(den, zero, _CMP_EQ_OQ), outside);
+    const __m256 past_end = _mm256_and_ps(entering, _mm256_cmp_ps(tn, _mm256_set1_ps(-1.0f), _CMP_LT_OQ));
+    if (_mm256_movemask_ps(_mm256_or_ps(parallel_outside, past_end)) != 0) return {};
+    const __m256 leaving = _mm256_cmp_ps(den, zero, _CMP_GT_OQ);
+    if (!_mm256_testz_ps(leaving, _mm256_cmp_ps(tn, tn_enter, _CMP_GT_OQ))) return {};
+    // valid_motion(from, d) for the hit: from + d and dot(d, d) finite (which holds only for a
+    // finite d, and then from + d only for a finite from), side by side.
+    const __m128 f2 = _mm256_castps256_ps128(f), d2 = _mm256_castps256_ps128(d);
+    const __m128 dd = _mm_mul_ps(d2, d2);
+    const __m128 length2 = _mm_add_ps(dd, _mm_permute_ps(dd, 0xb1));  // dx^2 + dy^2 in every lane
+    const __m128 end = _mm_add_ps(f2, d2);
+    const __m128 finite = _mm_add_ps(_mm_sub_ps(end, end), _mm_sub_ps(length2, length2));  // 0, or NaN
+    if (_mm_movemask_ps(_mm_cmpeq_ps(finite, _mm_setzero_ps())) != 0xf) return {};
+    const Vec2* edge_normals = poly.normals().data();
+    if (_mm256_movemask_ps(outside) == 0) [[unlikely]] {
+        // from is inside every edge (the loop's max_side <= 0): t = 0, and the normal of the
+        // first edge through from, if any.
+        const int on = _mm256_movemask_ps(_mm256_cmp_ps(side, zero, _CMP_EQ_OQ));
+        return make_hit(_mm_setzero_ps(), f2, plain_normal(edge_normals, kFirstEdge[on]));
+    }
+    // From outside: t_enter, and the normal of the first entering edge giving it, if t_enter > 0
+    // (tn < 0). 0 - tn_enter is +t_enter, +0 when no edge entered.
+    const __m256 gives_t = _mm256_and_ps(_mm256_cmp_ps(tn, zero, _CMP_LT_OQ), _mm256_cmp_ps(tn, tn_enter, _CMP_EQ_OQ));
+    const int entered_by = _mm256_movemask_ps(_mm256_and_ps(entering, gives_t));
+    const __m128 t = _mm_sub_ps(_mm_setzero_ps(), _mm256_castps256_ps128(tn_enter));
+    return make_hit(t, _mm_add_ps(f2, _mm_mul_ps(t, d2)), plain_normal(edge_normals, kFirstEdge[entered_by]));
+}
+
+// cast(Polygon)'s lanes, for 3 to 8 vertices on a CPU with AVX2 (see below for the signature).
+[[gnu::target("avx2")]] CastHit* cast_polygon_avx2_to(CastHit* out, double from, double to, const Polygon& poly) {
+    const __m256 f = _mm256_castpd_ps(_mm256_set1_pd(from)), t = _mm256_castpd_ps(_mm256_set1_pd(to));
+    return ::new (static_cast<void*>(out)) CastHit(cast_polygon8(f, t, poly));
 }
 #endif
 
 }  // namespace
 
-CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
-#ifdef JOSTLE_AVX2_PATHS
-    if (poly.count() <= 8 && detail::has_avx2()) return cast_polygon8(from, to, poly);
+// cast(Polygon) and cast(Shape) are written in the calling convention of a function returning a
+// CastHit, as x86-64 System V has it: the caller passes the result's address in %rdi, ahead of
+// the arguments, and gets it back in %rax; each Vec2 comes in the low 8 bytes of an SSE register,
+// as a double would. So these write the answer to *out and return out, and take from and to as
+// the doubles with their bits, and the public functions are aliases of them (below). That way
+// the choice of path ends in a tail call (GCC 12 never tail-calls a function returning a struct
+// in memory: a dispatching function cost each query a second call and return, and gave the
+// lanes' path a frame), and the lanes broadcast from and to straight from the registers they
+// came in (GCC passes a Vec2 through the stack to do that). No caller may see through the
+// aliases to these bodies, whose types differ from the public ones (link-time optimisation
+// could inline one into a caller): hence noipa, and no call to the public two in this file.
+#if defined(__clang__)
+#define JOSTLE_OPAQUE [[gnu::noinline]]
+#else
+#define JOSTLE_OPAQUE [[gnu::noipa]]
 #endif
-    return cast_polygon(from, to, poly);
+extern "C" {
+[[gnu::noinline]] static CastHit* jostle_cast_polygon_loop_to(CastHit* out, double from, double to, const Polygon& poly) {
+    return ::new (static_cast<void*>(out)) CastHit(cast_polygon(std::bit_cast<Vec2>(from), std::bit_cast<Vec2>(to), poly));
 }
+JOSTLE_OPAQUE CastHit* jostle_cast_polygon_to(CastHit* out, double from, double to, const Polygon& poly) {
+#ifdef JOSTLE_AVX2_PATHS
+    if (static_cast<unsigned>(poly.count() - 3) <= 5u && detail::has_avx2()) return cast_polygon_avx2_to(out, from, to, poly);
+#endif
+    return jostle_cast_polygon_loop_to(out, from, to, poly);
+}
+JOSTLE_OPAQUE CastHit* jostle_cast_shape_to(CastHit* out, double from, double to, const Shape& s) {
+    if (const Polygon* poly = std::get_if<Polygon>(&s)) return jostle_cast_polygon_to(out, from, to, *poly);
+    const Vec2 a = std::bit_cast<Vec2>(from), b = std::bit_cast<Vec2>(to);
+    CastHit h;
+    if (const Aabb* box = std::get_if<Aabb>(&s)) h = cast(a, b, *box);
+    else if (const Obb* obb = std::get_if<Obb>(&s)) h = cast(a, b, *obb);
+    else if (const Circle* c = std::get_if<Circle>(&s)) h = cast(a, b, *c);
+    else if (const Segment* seg = std::get_if<Segment>(&s)) h = cast(a, b, *seg);
+    else h = cast(a, b, std::get<PlacedMask>(s));
+    return ::new (static_cast<void*>(out)) CastHit(h);
+}
+}
+
+#if defined(__x86_64__) && defined(__ELF__)
+#pragma GCC diagnostic push
+#if !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wattribute-alias"  // the types differ; the calling convention does not
+#endif
+CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) __attribute__((alias("jostle_cast_polygon_to")));
+CastHit cast(Vec2 from, Vec2 to, const Shape& s) __attribute__((alias("jostle_cast_shape_to")));
+#pragma GCC diagnostic pop
+#undef JOSTLE_OPAQUE
+#else
+CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
+    CastHit h;
+    return *jostle_cast_polygon_to(&h, std::bit_cast<double>(from), std::bit_cast<double>(to), poly);
+}
+CastHit cast(Vec2 from, Vec2 to, const Shape& s) {
+    CastHit h;
+    return *jostle_cast_shape_to(&h, std::bit_cast<double>(from), std::bit_cast<double>(to), s);
+}
+#undef JOSTLE_OPAQUE
+#endif
 
 CastHit cast(Vec2 from, Vec2 to, const Segment& seg) {
     if (!valid_motion(from, to - from) || !valid(seg)) return {};
@@ -308,10 +421,6 @@ CastHit cast(Vec2 from, Vec2 to, const PlacedMask& m) {
     }
     if (best.hit && best.t == 0.0f) best.normal = {};  // started on a set pixel
     return best;
-}
-
-CastHit cast(Vec2 from, Vec2 to, const Shape& s) {
-    return std::visit([&](const auto& shape) { return cast(from, to, shape); }, s);
 }
 
 }  // namespace jostle

@@ -213,19 +213,27 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     return {best[0], index[0]};
 }
 
-// collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
-// Kept out of line (a tail call, the separations in registers) so that the common early out
-// is a short function with nothing to save.
-[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, Float4 cc, Float4 s0,
-                                               Float4 s1, Float4 s2, Float4 s3) {
-    if (!valid(b)) return {};
-    const Vec2 c = b.center;
-    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    Float4 top = lane_max(s1, lane_max(s0, none));
-    if (a.count() > 8) top = lane_max(s3, lane_max(s2, top));  // else copies of s0
-    const float max_sep = largest(top);
-    const int max_edge = first_face_at(a.count(), s0, s1, s2, s3, max_sep);
-    if (max_sep <= 0.0f) return hit_with(b.radius - max_sep, a.normals()[max_edge]);  // centre inside
+// A hit for the polygon-circle pair: hit_with(depth, n) with n in lanes 0-1 of `normal`, and
+// valid(b) asked here, of a would-be hit only. Every normal offered is finite (a face's, or the
+// centre's direction from a vertex within r, which is finite), so the test of finiteness is
+// of the depth and of r^2 (so r is finite), in one sum of x - x terms (see detail::all_finite),
+// and r >= 0 beside it. A centre that is not finite needs no test of its own: every separation
+// is then +-inf or NaN, so either the early out takes it (+inf > r) or the largest is -inf, and
+// the depth r + inf is not finite.
+inline Manifold polygon_circle_hit(const Circle& b, float depth, Float4 normal) {
+    const float r2 = b.radius * b.radius;
+    if (!(((depth - depth) + (r2 - r2) == 0.0f) & (b.radius >= 0.0f))) return {};
+    const Float4 n = detail::plain_zeros(normal);
+    return Manifold{true, depth > 0.0f ? depth : 0.0f, Vec2{n[0], n[1]}};
+}
+
+// collide(Polygon, Circle) once the centre is within r of every face's line, given the largest
+// separation max_sep, the first face at it, and the nearest-vertex search (run only if needed).
+template <class Nearest>
+[[gnu::always_inline]] inline Manifold polygon_circle_answer(const Polygon& a, const Circle& b, Float4 cc, float max_sep,
+                                                             int max_edge, Nearest&& nearest_vertex_of) {
+    const Float4 face_normal = lanes_xy(a.normals()[max_edge]);
+    if (max_sep <= 0.0f) return polygon_circle_hit(b, b.radius - max_sep, face_normal);  // centre inside
     // Beside the edge of greatest separation (c projects inside it, tested from each end so
     // that a long edge rounds neither), that edge is the nearest feature: its own normal and
     // the separation are exact where normalising c - p would round.
@@ -236,24 +244,122 @@ inline NearestVertex nearest_vertex(const Polygon& poly, Float4 cc) {
     const Float4 m =
         (cc - __builtin_shufflevector(p0, p1, 0, 1, 4, 5)) * __builtin_shufflevector(e, e, 0, 1, 0, 1);
     const Float4 along = m + __builtin_shufflevector(m, m, 1, 0, 3, 2);
-    if ((along[0] > 0.0f) & (along[2] < 0.0f)) return hit_with(b.radius - max_sep, a.normals()[max_edge]);
+    if ((along[0] > 0.0f) & (along[2] < 0.0f)) return polygon_circle_hit(b, b.radius - max_sep, face_normal);
     // Otherwise the nearest feature is a vertex: the direction from it to the centre, as a
     // plain difference of points (exact for nearby floats).
-    const NearestVertex nearest = nearest_vertex(a, cc);
+    const NearestVertex nearest = nearest_vertex_of();
     const float dist2 = nearest.dist2;
     if (!(dist2 <= b.radius * b.radius)) return {};
     const int vertex = nearest.vertex;
-    const Vec2 d = c - a.points()[vertex];  // used only when dist2 is finite
+    const Float4 d = cc - lanes_xy(a.points()[vertex]);  // lanes 0-1; used only when dist2 is finite
     // A direction outside the vertex's cone of normals means the centre is on the vertex up
     // to rounding: the nearer of its two faces' normals. (normalize_or(d, ...) with the one
-    // square root that the depth needs too.)
+    // square root that the depth needs too, and one DIVPS for both components.)
     const Vec2 n_prev = a.normals()[detail::prev_index(vertex, a.count())];
     const Vec2 n_next = a.normals()[vertex];
     const float len = detail::sqrt_nonneg(dist2);
-    Vec2 n = len > 0.0f && len < INFINITY ? Vec2{d.x / len, d.y / len} : a.normals()[max_edge];
-    if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) n = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
-    return hit_with(b.radius - len, n);
+    Float4 n4 = face_normal;
+    if (len > 0.0f && len < INFINITY) {
+        const Float4 q = d / Float4{len, len, len, len};
+        n4 = Float4{q[0], q[1], 0.0f, 0.0f};
+    }
+    const Vec2 n{n4[0], n4[1]};
+    if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f)
+        n4 = lanes_xy(dot(n, n_prev) >= dot(n, n_next) ? a.normals()[detail::prev_index(vertex, a.count())]
+                                                        : a.normals()[vertex]);
+    return polygon_circle_hit(b, b.radius - len, n4);
 }
+
+// collide(Polygon, Circle) past its early out: the centre is within r of every face's line.
+// Kept out of line (a tail call, the separations in registers) so that the common early out
+// is a short function with nothing to save.
+[[gnu::noinline]] Manifold polygon_circle_near(const Polygon& a, const Circle& b, Float4 cc, Float4 s0,
+                                               Float4 s1, Float4 s2, Float4 s3) {
+    const Float4 none = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    Float4 top = lane_max(s1, lane_max(s0, none));
+    if (a.count() > 8) top = lane_max(s3, lane_max(s2, top));  // else copies of s0
+    const float max_sep = largest(top);
+    const int max_edge = first_face_at(a.count(), s0, s1, s2, s3, max_sep);
+    return polygon_circle_answer(a, b, cc, max_sep, max_edge, [&] { return nearest_vertex(a, cc); });
+}
+
+Manifold polygon_circle(const Polygon& a, const Circle& b) {
+    if (!valid(a)) return {};
+    const Float4 cc = {b.center.x, b.center.y, b.center.x, b.center.y};
+    const FaceSeparations f = face_separations(a, cc);
+    // An edge normal separates (some lane's maximum beyond r, as the largest would be): early out.
+    if (detail::lane_bits(f.top > Float4{b.radius, b.radius, b.radius, b.radius}) != 0) return {};
+    return polygon_circle_near(a, b, cc, f.s0, f.s1, f.s2, f.s3);
+}
+
+#ifdef JOSTLE_AVX2_PATHS
+// Per count (3..8), all bits set in the lanes (VHADDPS's order) of the slots past the last
+// vertex: OR-ed into a float they make it NaN, which no comparison picks.
+constexpr auto kDeadHaddLanes = [] {
+    std::array<std::array<std::int32_t, 8>, 9> dead{};
+    for (int count = 0; count <= 8; ++count)
+        for (int lane = 0; lane < 8; ++lane) dead[count][lane] = detail::kSlotOfHaddLane[lane] >= count ? -1 : 0;
+    return dead;
+}();
+
+// c - p for slots 0-3 and 4-7 (x, y pairs as stored), the centre broadcast straight from the
+// Circle, and each face's separation dot(n, c - p): each slot's x term plus its y term (VHADDPS
+// adds y + x, the same sum), in VHADDPS's lane order.
+struct CircleLanes {
+    __m256 cc, o0, o1, side;  // cc: the centre's x, y in every pair of lanes
+};
+[[gnu::target("avx2"), gnu::always_inline]] inline CircleLanes circle_lanes(const Polygon& a, const Circle& b) {
+    const __m256 cc = _mm256_castpd_ps(_mm256_broadcast_sd(reinterpret_cast<const double*>(&b.center)));
+    const float* points = &a.points().data()->x;  // 8 slots read: a Polygon has 16
+    const float* normals = &a.normals().data()->x;
+    CircleLanes l;
+    l.cc = cc;
+    l.o0 = _mm256_sub_ps(cc, _mm256_loadu_ps(points));
+    l.o1 = _mm256_sub_ps(cc, _mm256_loadu_ps(points + 8));
+    l.side = _mm256_hadd_ps(_mm256_mul_ps(_mm256_loadu_ps(normals), l.o0),
+                            _mm256_mul_ps(_mm256_loadu_ps(normals + 8), l.o1));
+    return l;
+}
+
+// Past the early out, inlined (GCC still gives the early out's miss a short return of its own).
+// Not a separate function taking the lanes: GCC gives a function with 256-bit arguments no
+// VZEROUPPER, and the SSE code after it then waits on the upper halves (the world step's sincosf
+// ran 60% slower).
+[[gnu::target("avx2"), gnu::always_inline]] inline Manifold polygon_circle8_near(const Polygon& a, const Circle& b,
+                                                                              const CircleLanes& l) {
+    const __m256 dead = _mm256_loadu_ps(reinterpret_cast<const float*>(kDeadHaddLanes[a.count()].data()));
+    const __m256 side = _mm256_or_ps(l.side, dead);
+    const __m256 minus_inf = _mm256_set1_ps(-INFINITY);
+    const __m256 top = detail::max8(_mm256_max_ps(side, minus_inf));  // VMAXPS gives -inf for NaN
+    const float max_sep = _mm256_cvtss_f32(top);
+    const int max_edge = detail::kFirstHaddSlot<0>[_mm256_movemask_ps(_mm256_cmp_ps(side, top, _CMP_EQ_OQ))];
+    const Float4 c4 = reinterpret_cast<Float4>(_mm256_castps256_ps128(l.cc));
+    return polygon_circle_answer(a, b, c4, max_sep, max_edge, [&]() __attribute__((target("avx2"))) {
+        const __m256 d2 =
+            _mm256_or_ps(_mm256_hadd_ps(_mm256_mul_ps(l.o0, l.o0), _mm256_mul_ps(l.o1, l.o1)), dead);
+        const __m256 least = detail::min8(_mm256_min_ps(d2, _mm256_set1_ps(INFINITY)));  // VMINPS: +inf for NaN
+        // The first vertex at the least distance (when it is +inf, any: that is a miss).
+        return NearestVertex{_mm256_cvtss_f32(least),
+                             detail::kFirstHaddSlot<0>[_mm256_movemask_ps(_mm256_cmp_ps(d2, least, _CMP_EQ_OQ))]};
+    });
+}
+
+// collide(Polygon, Circle) (09-90) for 3 to 8 vertices with AVX2 (chosen at run time): every face's
+// separation in one register instead of two, and, past the early out, the largest separation
+// and the nearest vertex by folds over the lanes. The lanes do the SSE path's arithmetic, NaN
+// past the last vertex; the folds see NaN as -inf (faces) or +inf (vertices), as the SSE
+// path's comparisons skip it, and take the first lane equal to the result, in slot order: the
+// same bits.
+[[gnu::target("avx2")]] Manifold polygon_circle8(const Polygon& a, const Circle& b) {
+    const CircleLanes l = circle_lanes(a, b);
+    const __m256 side = l.side;
+    // An edge normal separates: early out. The lanes past the last face need no mask here: their
+    // normals are zero (a Polygon keeps its unused slots zero), so they hold +-0 or NaN, beyond no
+    // valid radius (and a negative radius is a miss anyway).
+    if (_mm256_movemask_ps(_mm256_cmp_ps(side, _mm256_broadcast_ss(&b.radius), _CMP_GT_OQ)) != 0) return {};
+    return polygon_circle8_near(a, b, l);
+}
+#endif
 }  // namespace
 
 Manifold collide(const Polygon& a, const Circle& b) {
@@ -262,12 +368,10 @@ Manifold collide(const Polygon& a, const Circle& b) {
     // inside, the shortest way out is through the nearest edge, by r plus c's depth.
     // The circle is checked only for an answer that would be a hit (an invalid circle is a
     // miss, and the arithmetic on any input is defined); the empty polygon has no faces.
-    if (!valid(a)) return {};
-    const Float4 cc = {b.center.x, b.center.y, b.center.x, b.center.y};
-    const FaceSeparations f = face_separations(a, cc);
-    // An edge normal separates (some lane's maximum beyond r, as the largest would be): early out.
-    if (detail::lane_bits(f.top > Float4{b.radius, b.radius, b.radius, b.radius}) != 0) return {};
-    return polygon_circle_near(a, b, cc, f.s0, f.s1, f.s2, f.s3);
+#ifdef JOSTLE_AVX2_PATHS
+    if (static_cast<unsigned>(a.count() - 3) <= 5u && detail::has_avx2()) return polygon_circle8(a, b);
+#endif
+    return polygon_circle(a, b);
 }
 
 Manifold collide_sat(const Polygon& a, const Circle& b) {

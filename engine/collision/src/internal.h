@@ -3,7 +3,10 @@
 // parameters, and the convex "point set + axes" view used by SAT.
 #pragma once
 
+#include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #if defined(__SSE__)
 #include <xmmintrin.h>
@@ -130,13 +133,23 @@ inline Float4 plain_zeros(Float4 v) { return v + Float4{0.0f, 0.0f, 0.0f, 0.0f};
 // function, never -march: it changes which instructions run, not the rounding; no FMA).
 using Float8 = float __attribute__((vector_size(32)));
 using Int8 = int __attribute__((vector_size(32)));
-// Whether the AVX2 paths run: the CPU's answer, checked once; detail::use_avx2_paths lets
-// tests turn them off to compare against the SSE paths.
-inline bool& avx2_paths_on() {
-    static bool on = __builtin_cpu_supports("avx2");
-    return on;
+// Whether the AVX2 paths run: the CPU's answer, asked once, on first use (no static initialiser:
+// one per file would move every function after them and change the world step's timing with
+// its code unchanged); detail::use_avx2_paths lets tests turn them off to compare against the
+// SSE paths. A plain atomic (relaxed: one MOV to read), -1 until asked, rather than a
+// function's static, so that reading it needs no guard (whose call made every dispatching
+// function keep registers).
+inline std::atomic<signed char> avx2_state{-1};
+[[gnu::cold, gnu::noinline]] inline bool ask_cpu_for_avx2() {
+    __builtin_cpu_init();
+    const bool has = __builtin_cpu_supports("avx2");
+    avx2_state.store(has ? 1 : 0, std::memory_order_relaxed);
+    return has;
 }
-inline bool has_avx2() { return avx2_paths_on(); }
+inline bool has_avx2() {
+    const signed char state = avx2_state.load(std::memory_order_relaxed);
+    return state > 0 || (state < 0 && ask_cpu_for_avx2());
+}
 // Bit i set when lane i of a comparison's result is true (VMOVMSKPS).
 [[gnu::target("avx2"), gnu::always_inline]] inline unsigned lane_bits8(Int8 m) {
     return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(m)));
@@ -152,6 +165,21 @@ inline bool has_avx2() { return avx2_paths_on(); }
     x = __builtin_shufflevector(a, b, 0, 2, 8, 10, 4, 6, 12, 14);
     y = __builtin_shufflevector(a, b, 1, 3, 9, 11, 5, 7, 13, 15);
 }
+// VHADDPS adds neighbouring floats within each 128-bit half, so per-slot sums over slots 0-3 and
+// 4-7 (x, y pairs as a Polygon stores them) come out in lanes as slots 0, 1, 4, 5, 2, 3, 6, 7.
+inline constexpr int kSlotOfHaddLane[8] = {0, 1, 4, 5, 2, 3, 6, 7};
+// For a lane mask in that order: the first slot it names, or `none` when it names none.
+template <int none>
+inline constexpr auto kFirstHaddSlot = [] {
+    std::array<std::uint8_t, 256> first{};
+    for (int bits = 0; bits < 256; ++bits) {
+        int slot = none;
+        for (int lane = 7; lane >= 0; --lane)
+            if ((bits >> lane & 1) != 0 && (slot == none || kSlotOfHaddLane[lane] < slot)) slot = kSlotOfHaddLane[lane];
+        first[bits] = static_cast<std::uint8_t>(slot);
+    }
+    return first;
+}();
 // The largest lane of m in every lane (VMAXPS over the halves, pairs and neighbours); m must
 // hold no NaN.
 [[gnu::target("avx2"), gnu::always_inline]] inline Float8 max8(Float8 m) {
@@ -161,6 +189,15 @@ inline bool has_avx2() { return avx2_paths_on(); }
     m = t > m ? t : m;
     t = __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
     return t > m ? t : m;
+}
+// The same for the smallest lane.
+[[gnu::target("avx2"), gnu::always_inline]] inline Float8 min8(Float8 m) {
+    Float8 t = __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3);
+    m = t < m ? t : m;
+    t = __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5);
+    m = t < m ? t : m;
+    t = __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
+    return t < m ? t : m;
 }
 #endif
 

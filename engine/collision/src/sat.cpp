@@ -262,8 +262,9 @@ FaceSeparation max_face_separation(const Vec2* points, const Vec2* normals, int 
 
 bool detail::use_avx2_paths(bool on) {
 #ifdef JOSTLE_AVX2_PATHS
-    detail::avx2_paths_on() = on && __builtin_cpu_supports("avx2");
-    return detail::avx2_paths_on();
+    detail::ask_cpu_for_avx2();
+    if (!on) detail::avx2_state.store(0, std::memory_order_relaxed);
+    return detail::has_avx2();
 #else
     (void)on;
     return false;

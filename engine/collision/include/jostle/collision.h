@@ -208,6 +208,8 @@ private:
     friend std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* error);
     friend struct detail::PolygonAccess;
     int count_ = 0;
+    // The slots past count_ are always zero: the AVX2 paths read 8 slots for up to 8 vertices
+    // and count on zero normals there (every way of making a Polygon keeps them so; tested).
     std::array<Vec2, kMaxPolygonVertices> points_{};
     std::array<Vec2, kMaxPolygonVertices> normals_{};
 };
