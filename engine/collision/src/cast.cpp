@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <new>
 #include <utility>
 #include <variant>
 
@@ -205,8 +204,9 @@ EdgeClip clip_edges(Vec2 from, Vec2 d, const Vec2* points, const Vec2* normals, 
     return hit_at(from, d, c.t_enter, c.normal);
 }
 
-// The plain version, for polygons of more than 8 vertices and CPUs without AVX2.
-CastHit cast_polygon(Vec2 from, Vec2 to, const Polygon& poly) {
+// The plain version, for polygons of more than 8 vertices and CPUs without AVX2 (not inlined:
+// the AVX2 path then needs no registers saved for it).
+[[gnu::noinline]] CastHit cast_polygon(Vec2 from, Vec2 to, const Polygon& poly) {
     if (!valid(poly)) return {};
     const Vec2 d = to - from;
     return polygon_hit(from, d, poly, clip_edges(from, d, poly.points().data(), poly.normals().data(), poly.count()));
@@ -303,74 +303,23 @@ inline CastHit make_hit(__m128 t, __m128 point, __m128 normal) {
     return make_hit(t, _mm_add_ps(f2, _mm_mul_ps(t, d2)), plain_normal(edge_normals, kFirstEdge[entered_by]));
 }
 
-// cast(Polygon)'s lanes, for 3 to 8 vertices on a CPU with AVX2 (see below for the signature).
-[[gnu::target("avx2")]] CastHit* cast_polygon_avx2_to(CastHit* out, double from, double to, const Polygon& poly) {
-    const __m256 f = _mm256_castpd_ps(_mm256_set1_pd(from)), t = _mm256_castpd_ps(_mm256_set1_pd(to));
-    return ::new (static_cast<void*>(out)) CastHit(cast_polygon8(f, t, poly));
+// cast(Polygon)'s lanes, for 3 to 8 vertices on a CPU with AVX2: from and to in every 64-bit
+// lane (VBROADCASTSD).
+[[gnu::target("avx2")]] CastHit cast_polygon_avx2(Vec2 from, Vec2 to, const Polygon& poly) {
+    const __m256 f = _mm256_castpd_ps(_mm256_set1_pd(std::bit_cast<double>(from)));
+    const __m256 t = _mm256_castpd_ps(_mm256_set1_pd(std::bit_cast<double>(to)));
+    return cast_polygon8(f, t, poly);
 }
 #endif
 
 }  // namespace
 
-// cast(Polygon) and cast(Shape) are written in the calling convention of a function returning a
-// CastHit, as x86-64 System V has it: the caller passes the result's address in %rdi, ahead of
-// the arguments, and gets it back in %rax; each Vec2 comes in the low 8 bytes of an SSE register,
-// as a double would. So these write the answer to *out and return out, and take from and to as
-// the doubles with their bits, and the public functions are aliases of them (below). That way
-// the choice of path ends in a tail call (GCC 12 never tail-calls a function returning a struct
-// in memory: a dispatching function cost each query a second call and return, and gave the
-// lanes' path a frame), and the lanes broadcast from and to straight from the registers they
-// came in (GCC passes a Vec2 through the stack to do that). No caller may see through the
-// aliases to these bodies, whose types differ from the public ones (link-time optimisation
-// could inline one into a caller): hence noipa, and no call to the public two in this file.
-#if defined(__clang__)
-#define JOSTLE_OPAQUE [[gnu::noinline]]
-#else
-#define JOSTLE_OPAQUE [[gnu::noipa]]
-#endif
-extern "C" {
-[[gnu::noinline]] static CastHit* jostle_cast_polygon_loop_to(CastHit* out, double from, double to, const Polygon& poly) {
-    return ::new (static_cast<void*>(out)) CastHit(cast_polygon(std::bit_cast<Vec2>(from), std::bit_cast<Vec2>(to), poly));
-}
-JOSTLE_OPAQUE CastHit* jostle_cast_polygon_to(CastHit* out, double from, double to, const Polygon& poly) {
-#ifdef JOSTLE_AVX2_PATHS
-    if (static_cast<unsigned>(poly.count() - 3) <= 5u && detail::has_avx2()) return cast_polygon_avx2_to(out, from, to, poly);
-#endif
-    return jostle_cast_polygon_loop_to(out, from, to, poly);
-}
-JOSTLE_OPAQUE CastHit* jostle_cast_shape_to(CastHit* out, double from, double to, const Shape& s) {
-    if (const Polygon* poly = std::get_if<Polygon>(&s)) return jostle_cast_polygon_to(out, from, to, *poly);
-    const Vec2 a = std::bit_cast<Vec2>(from), b = std::bit_cast<Vec2>(to);
-    CastHit h;
-    if (const Aabb* box = std::get_if<Aabb>(&s)) h = cast(a, b, *box);
-    else if (const Obb* obb = std::get_if<Obb>(&s)) h = cast(a, b, *obb);
-    else if (const Circle* c = std::get_if<Circle>(&s)) h = cast(a, b, *c);
-    else if (const Segment* seg = std::get_if<Segment>(&s)) h = cast(a, b, *seg);
-    else h = cast(a, b, std::get<PlacedMask>(s));
-    return ::new (static_cast<void*>(out)) CastHit(h);
-}
-}
-
-#if defined(__x86_64__) && defined(__ELF__)
-#pragma GCC diagnostic push
-#if !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wattribute-alias"  // the types differ; the calling convention does not
-#endif
-CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) __attribute__((alias("jostle_cast_polygon_to")));
-CastHit cast(Vec2 from, Vec2 to, const Shape& s) __attribute__((alias("jostle_cast_shape_to")));
-#pragma GCC diagnostic pop
-#undef JOSTLE_OPAQUE
-#else
 CastHit cast(Vec2 from, Vec2 to, const Polygon& poly) {
-    CastHit h;
-    return *jostle_cast_polygon_to(&h, std::bit_cast<double>(from), std::bit_cast<double>(to), poly);
-}
-CastHit cast(Vec2 from, Vec2 to, const Shape& s) {
-    CastHit h;
-    return *jostle_cast_shape_to(&h, std::bit_cast<double>(from), std::bit_cast<double>(to), s);
-}
-#undef JOSTLE_OPAQUE
+#ifdef JOSTLE_AVX2_PATHS
+    if (static_cast<unsigned>(poly.count() - 3) <= 5u && detail::has_avx2()) return cast_polygon_avx2(from, to, poly);
 #endif
+    return cast_polygon(from, to, poly);
+}
 
 CastHit cast(Vec2 from, Vec2 to, const Segment& seg) {
     if (!valid_motion(from, to - from) || !valid(seg)) return {};
@@ -421,6 +370,10 @@ CastHit cast(Vec2 from, Vec2 to, const PlacedMask& m) {
     }
     if (best.hit && best.t == 0.0f) best.normal = {};  // started on a set pixel
     return best;
+}
+
+CastHit cast(Vec2 from, Vec2 to, const Shape& s) {
+    return std::visit([&](const auto& shape) { return cast(from, to, shape); }, s);
 }
 
 }  // namespace jostle
