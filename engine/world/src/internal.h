@@ -153,6 +153,7 @@ struct World::Impl {
     EventHandler handler;
     Rng rng;
     std::uint64_t steps = 0;
+    std::uint64_t removals = 0;  // remove() calls ever: a step that made none has no stale ids
     bool in_step = false;
 
     explicit Impl(const WorldDesc& d) : desc(d), rng(d.seed) {}
@@ -200,7 +201,8 @@ struct World::Impl {
     // Appends the contacts fast circles stopped on to `touching`, and bullet hits to events.
     // `pairs` are the step's candidate pairs (broadphase_pairs).
     void sweeps(float dt, std::vector<Contact>& touching, const std::vector<detail::Pair>& pairs);
-    void emit_events(std::vector<Contact> touching);
+    // removed_some: an entity was destroyed during the step (contacts naming it are dropped).
+    void emit_events(std::vector<Contact> touching, bool removed_some);
 
     // A single contact's velocity response (impulse with restitution and friction), used by
     // the sweeps; returns nothing, changes the velocities of dynamic bodies.

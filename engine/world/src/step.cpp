@@ -63,6 +63,7 @@ void World::step(float dt) {
     StepGuard guard(w.in_step);
     w.events.clear();
     w.paths.clear();
+    const std::uint64_t removals_before = w.removals;
 
     w.integrate(dt);
     const std::vector<Pair> pairs = w.broadphase_pairs();
@@ -74,16 +75,18 @@ void World::step(float dt) {
         // A kept contact still counts as touching while its gap is within the slop, so
         // rounding does not make begin/end events flicker.
         if (c.separation > w.desc.slop) continue;
-        const Shape& a = w.placement(c.pair.a).shape;
-        const Shape& b = w.placement(c.pair.b).shape;
-        touching.push_back({w.id_of(c.pair.a), w.id_of(c.pair.b), detail::contact_point(a, b, c.manifold),
-                            c.manifold.normal, c.manifold.depth, c.trigger,
-                            c.trigger && w.slots[c.pair.b].body.kind == BodyKind::trigger, c.corner});
+        // (Nothing has moved since the narrowphase: the placements and packed records are
+        // current, and read without going back to the bodies.)
+        const Shape& a = w.placements[c.pair.a].shape;
+        const Shape& b = w.placements[c.pair.b].shape;
+        touching.push_back({{c.pair.a, w.pair_bodies[c.pair.a].generation}, {c.pair.b, w.pair_bodies[c.pair.b].generation},
+                            detail::contact_point(a, b, c.manifold), c.manifold.normal, c.manifold.depth, c.trigger,
+                            c.trigger && w.pair_bodies[c.pair.b].pushable < 0.0f, c.corner});
     }
     w.resolve(found, pairs, dt);
     w.sweeps(dt, touching, pairs);
     ++w.steps;
-    w.emit_events(std::move(touching));
+    w.emit_events(std::move(touching), w.removals != removals_before);
     // The handler may change the world, even replace itself: call a copy. The events vector
     // is not touched until the next step, so the loop is safe.
     if (w.handler) {
@@ -794,14 +797,19 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
 // events: compare this step's contacts with the last step's
 // ---------------------------------------------------------------------------------------
 
-void World::Impl::emit_events(std::vector<Contact> touching) {
+void World::Impl::emit_events(std::vector<Contact> touching, bool removed_some) {
     const auto key_less = [](const Contact& x, const Contact& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
-    std::stable_sort(touching.begin(), touching.end(), key_less);
+    // The narrowphase's contacts come sorted, those of the sweeps after them: sorting just the
+    // rest and merging is the same stable sort.
+    const auto sorted_end = std::is_sorted_until(touching.begin(), touching.end(), key_less);
+    std::stable_sort(sorted_end, touching.end(), key_less);
+    std::inplace_merge(touching.begin(), sorted_end, touching.end(), key_less);
     // A pair found by the narrowphase and again by a sweep keeps the narrowphase's entry.
     touching.erase(std::unique(touching.begin(), touching.end(),
                                [](const Contact& x, const Contact& y) { return x.a == y.a && x.b == y.b; }),
                    touching.end());
-    std::erase_if(touching, [&](const Contact& c) { return find(c.a) == nullptr || find(c.b) == nullptr; });
+    // Contacts with an entity destroyed during the step (a bullet that despawned) are dropped.
+    if (removed_some) std::erase_if(touching, [&](const Contact& c) { return find(c.a) == nullptr || find(c.b) == nullptr; });
 
     std::vector<Event> ends, begins, exits, enters;
     const auto make = [&](const Contact& c, bool begin) {

@@ -122,6 +122,7 @@ void World::Impl::remove(std::uint32_t index) {
     placements[index] = {};
     s.fast = false;
     free_slots.push_back(index);
+    ++removals;
     --live;
     std::erase_if(contacts, [&](const Contact& c) { return c.a == id || c.b == id; });
 }
