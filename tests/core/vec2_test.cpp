@@ -1,10 +1,12 @@
 // Vec2 helpers (core/vec2.h): normalize_or keeps the exact direction of every finite
-// non-zero vector, including those whose squared length float cannot hold.
+// non-zero vector, including those whose squared length float cannot hold; the inline
+// fmax and fmin answer as the library does.
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "jostle/core/vec2.h"
@@ -42,6 +44,35 @@ TEST(NormalizeOr, ZeroAndNonFiniteGiveTheFallback) {
     const float inf = std::numeric_limits<float>::infinity();
     for (const Vec2 v : {Vec2{}, Vec2{-0.0f, 0.0f}, Vec2{nan, 1}, Vec2{1, nan}, Vec2{inf, 0}, Vec2{-inf, inf}, Vec2{1, -inf}})
         EXPECT_TRUE(same_bits(normalize_or(v, Vec2{9, 8}), Vec2{9, 8})) << v.x << ", " << v.y;
+}
+
+// fmax_inline and fmin_inline answer as std::fmax and std::fmin do (the other argument for a
+// NaN), and for two zeros the first argument, whatever their signs.
+TEST(InlineMinMax, TheLibrarysAnswersWithTheFirstOfTwoZeros) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 2.5f, INFINITY, -INFINITY, nan, 1e-45f};
+    const auto bits = [](float v) { return std::bit_cast<std::uint32_t>(v); };
+    for (const float a : values) {
+        for (const float b : values) {
+            volatile float va = a, vb = b;  // the library's answer, not a folded constant
+            const float max = std::fmax(va, vb), min = std::fmin(va, vb);
+            if (a == 0.0f && b == 0.0f) {
+                EXPECT_EQ(bits(fmax_inline(a, b)), bits(a)) << "fmax(" << a << ", " << b << ")";
+                EXPECT_EQ(bits(fmin_inline(a, b)), bits(a)) << "fmin(" << a << ", " << b << ")";
+                continue;
+            }
+            if (std::isnan(max)) {
+                EXPECT_TRUE(std::isnan(fmax_inline(a, b))) << a << ", " << b;
+            } else {
+                EXPECT_EQ(bits(fmax_inline(a, b)), bits(max)) << "fmax(" << a << ", " << b << ")";
+            }
+            if (std::isnan(min)) {
+                EXPECT_TRUE(std::isnan(fmin_inline(a, b))) << a << ", " << b;
+            } else {
+                EXPECT_EQ(bits(fmin_inline(a, b)), bits(min)) << "fmin(" << a << ", " << b << ")";
+            }
+        }
+    }
 }
 
 }  // namespace

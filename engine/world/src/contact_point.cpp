@@ -21,8 +21,8 @@ Feature extreme(std::span<const Vec2> points, Vec2 d) {
     float best = -INFINITY;
     float scale = 1.0f;
     for (Vec2 p : points) {
-        best = std::fmax(best, dot(p, d));
-        scale = std::fmax(scale, std::fmax(std::fabs(p.x), std::fabs(p.y)));
+        best = fmax_inline(best, dot(p, d));
+        scale = fmax_inline(scale, fmax_inline(std::fabs(p.x), std::fabs(p.y)));
     }
     // Vertices within rounding of the extreme form an edge facing d.
     const float tol = 1e-5f * scale;
@@ -77,8 +77,8 @@ Vec2 contact_point(const Shape& a, const Shape& b, const Manifold& m) {
     const Vec2 t = perp(n);
     const float a0 = dot(fa.p[0], t), a1 = dot(fa.p[1], t);
     const float b0 = dot(fb.p[0], t), b1 = dot(fb.p[1], t);
-    const float lo = std::fmax(std::fmin(a0, a1), std::fmin(b0, b1));
-    const float hi = std::fmin(std::fmax(a0, a1), std::fmax(b0, b1));
+    const float lo = fmax_inline(fmin_inline(a0, a1), fmin_inline(b0, b1));
+    const float hi = fmin_inline(fmax_inline(a0, a1), fmax_inline(b0, b1));
     const float along = 0.5f * (lo + hi);
     const float across = 0.5f * (dot(fa.p[0], n) + dot(fb.p[0], n));
     return along * t + across * n;
@@ -97,12 +97,12 @@ bool corner_touch(const Shape& a, const Shape& b, const Manifold& m) {
     const auto range = [&](const Feature& f) {
         const float u = dot(f.p[0], t);
         const float v = dot(f.p[f.count - 1], t);
-        return std::pair{std::fmin(u, v), std::fmax(u, v)};
+        return std::pair{fmin_inline(u, v), fmax_inline(u, v)};
     };
     const auto [alo, ahi] = range(fa);
     const auto [blo, bhi] = range(fb);
-    const float scale = 1.0f + std::fmax(std::fmax(std::fabs(alo), std::fabs(ahi)), std::fmax(std::fabs(blo), std::fabs(bhi)));
-    return std::fmin(ahi, bhi) - std::fmax(alo, blo) <= 1e-6f * scale;
+    const float scale = 1.0f + fmax_inline(fmax_inline(std::fabs(alo), std::fabs(ahi)), fmax_inline(std::fabs(blo), std::fabs(bhi)));
+    return fmin_inline(ahi, bhi) - fmax_inline(alo, blo) <= 1e-6f * scale;
 }
 
 }  // namespace jostle::detail

@@ -25,10 +25,9 @@ bool touch(const Aabb& a, const Aabb& b) {
     return (a.max.x >= b.min.x) & (a.min.x <= b.max.x) & (a.max.y >= b.min.y) & (a.min.y <= b.max.y);
 }
 
-// std::fmax(x, 0.0f) without the libm call (GCC calls fmaxf for NaN's sake): the same answer
-// for every x, -0 (kept, as glibc's fmaxf keeps its first argument on a tie) and NaN (0)
-// included. The pair loops take it many times a step.
-inline float max0(float x) { return x >= 0.0f ? x : 0.0f; }
+// std::fmax(x, 0.0f) without the libm call (fmax_inline's answer): the pair loops take it
+// many times a step.
+inline float max0(float x) { return fmax_inline(x, 0.0f); }
 
 float wrap_angle(float a) {
     constexpr float kPi = std::numbers::pi_v<float>;

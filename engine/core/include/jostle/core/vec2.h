@@ -30,6 +30,14 @@ constexpr float cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 constexpr Vec2 perp(Vec2 v) { return {-v.y, v.x}; }
 constexpr float length_squared(Vec2 v) { return dot(v, v); }
 inline float length(Vec2 v) { return std::sqrt(dot(v, v)); }
+// std::fmax and std::fmin, inline: the other argument for a NaN, else the larger (smaller),
+// and for two zeros the first argument (where std::fmax's choice between -0 and +0 depends on
+// whether GCC expanded it or called libm, these answer the same in every build). GCC calls
+// libm for them (for NaN's sake), a call in every turn of the loops that take them per
+// vertex or per pair.
+constexpr float fmax_inline(float a, float b) { return (b > a || a != a) ? b : a; }
+constexpr float fmin_inline(float a, float b) { return (b < a || a != a) ? b : a; }
+
 constexpr Vec2 min(Vec2 a, Vec2 b) { return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y}; }
 constexpr Vec2 max(Vec2 a, Vec2 b) { return {a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y}; }
 inline bool is_finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
