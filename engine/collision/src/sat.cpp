@@ -67,9 +67,6 @@ SegmentAxes segment_axes(const Segment& s) {
 }  // namespace detail
 
 namespace {
-detail::ConvexView view_of(const Polygon& p, Vec2 offset = {}) {
-    return {p.points().data(), p.count(), p.normals().data(), p.count(), offset};
-}
 detail::ConvexView view_of(const detail::SegmentAxes& s, Vec2 offset = {}) {
     return {s.points, 2, s.axes, s.axis_count, offset};
 }
@@ -604,17 +601,56 @@ Manifold collide(const Aabb& a, const Segment& b) {
     return collide(to_polygon(a), b);
 }
 
+namespace {
+// A convex polygon against a segment (09-62 by faces, as polygon_polygon): the Minkowski
+// difference of a polygon and a segment has the polygon's faces and the two sides of the
+// segment's line as its faces (a segment of zero length adds none: a point), so those are all
+// the axes SAT needs: the segment's own direction, which the generic SAT (sat_collide) also
+// tries, is never a smaller push than the least of them. Ties go to A's face, then the
+// segment's side through b.a (normal n, as segment_axes takes it), then the side through b.b.
+Manifold polygon_segment(Convex a, const Segment& b) {
+    const Vec2 ends[2] = {b.a, b.b};
+    const FaceSeparation fa = max_face_separation(a.points, a.normals, a.count, ends, 2);
+    if (!(fa.separation <= 0.0f)) return {};
+    float fb = -INFINITY;  // the segment's sides: the largest separation of A's vertices
+    Vec2 fb_normal;        // and the MTD's normal for it (minus the side's outward normal)
+    const Vec2 d = b.b - b.a;
+    const float len = length(d);
+    if (len > 0.0f) {
+        const Vec2 n{d.y / len, -d.x / len};
+        // Side n through b.a: min over A of dot(n, v - b.a); side -n through b.b: min over A of
+        // dot(-n, v - b.b). A separation > 0 (or NaN) is a gap.
+        float side_a = INFINITY, side_b = INFINITY;
+        for (int i = 0; i < a.count; ++i) {
+            const float ta = dot(n, a.points[i] - b.a), tb = -dot(n, a.points[i] - b.b);
+            side_a = ta < side_a ? ta : side_a;
+            side_b = tb < side_b ? tb : side_b;
+        }
+        if (!(side_a <= 0.0f) || !(side_b <= 0.0f)) return {};
+        if (side_b > side_a) {
+            fb = side_b;
+            fb_normal = n;
+        } else {
+            fb = side_a;
+            fb_normal = -n;
+        }
+    }
+    const bool a_face = fa.separation >= fb;
+    const float depth = -(a_face ? fa.separation : fb);
+    if (!(depth < INFINITY)) return {};
+    return detail::hit_with(depth, a_face ? a.normals[fa.face] : fb_normal);
+}
+}  // namespace
+
 Manifold collide(const Polygon& a, const Segment& b) {
     if (!valid(a) || !valid(b)) return {};
-    const auto s = detail::segment_axes(b);
-    return detail::sat_collide(view_of(a), view_of(s));
+    return polygon_segment(convex(a), b);
 }
 
 Manifold collide(const Obb& a, const Segment& b) {
+    // Around the box's centre, where its corners are precise.
     if (!valid(a) || !valid(b)) return {};
-    const Polygon box = detail::centred_polygon(a);
-    const auto s = detail::segment_axes(Segment{b.a - a.center, b.b - a.center});
-    return detail::sat_collide(view_of(box), view_of(s));
+    return polygon_segment(CentredBox(a).view(), Segment{b.a - a.center, b.b - a.center});
 }
 
 Manifold collide(const Segment& a, const Segment& b) {
