@@ -133,15 +133,16 @@ struct World::Impl {
     std::size_t live = 0;
     detail::Broadphase broadphase;  // fat bounds, with a lazy tree for region queries (sweeps, World queries)
     detail::PairGrid pair_grid;     // all candidate pairs at once, over the same fat bounds
-    std::vector<detail::GridItem> grid_items;  // scratch of broadphase_pairs, kept to reuse
+    std::vector<detail::GridItem> grid_items;  // gathered by integrate for broadphase_pairs
+    std::size_t grid_movers = 0;               // of grid_items, those that move
     std::vector<detail::GridPair> grid_pairs;
     // Scratch of the step, one entry a slot: packed copies of what its pair loops read (an
     // EntityDesc spans several cache lines, and there are tens of thousands of pairs).
     // Filled by integrate:
     std::vector<detail::BodyState> states;
-    std::vector<detail::PairBody> pair_bodies;  // pushable, generation; box by broadphase_pairs
+    std::vector<detail::PairBody> pair_bodies;  // pushable, generation; box after the motion
     std::vector<detail::MeetKey> meet_keys;  // detail::meet_key(body, id)
-    // and by broadphase_pairs, for the narrowphase and resolve:
+    // and, after the motion, for the broadphase, the narrowphase and resolve:
     std::vector<Vec2> positions;           // body.position (every slot)
     // The slots whose fat bounds changed (proxy made, re-fattened or dropped) since the
     // step's broadphase: with the candidate pairs, all a fast circle's sweep can meet.

@@ -321,31 +321,45 @@ void World::Impl::integrate(float dt) {
         for (const auto& [a, b] : edges) states[a].friction_dv = states[b].friction_dv = {};  // friction here acts before the motion
     }
 
+    // The motion, and in the same pass over the bodies what the broadphase gathers of each:
+    // its packed position and bounds and its grid item (fat bounds).
+    grid_items.clear();
+    positions.resize(slots.size());
+    grid_movers = 0;
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         Slot& s = slots[i];
-        if (!s.alive) continue;
         EntityDesc& b = s.body;
         // Bullets move along their path in the sweeps phase; static bodies never move (and
         // keep their velocity field, which contacts read as zero).
-        if (b.kind == BodyKind::static_body) continue;
-        b.velocity = states[i].velocity;
-        const float angle = wrap_angle(b.angle + b.angular_velocity * dt);
-        if (std::bit_cast<std::uint32_t>(angle) != std::bit_cast<std::uint32_t>(b.angle)) {
-            b.angle = angle;
-            turn(i);
-        }
-        if (b.kind == BodyKind::bullet) continue;
-        const Vec2 motion = dt * b.velocity;
-        if (b.kind == BodyKind::dynamic) {
-            if (const auto* c = std::get_if<Circle>(&b.collider.local_shape())) {
-                // More than half its radius in one step could carry it through a thin wall.
-                s.fast = length(motion) > 0.5f * c->radius;
-                if (s.fast) fast_circles.push_back(i);
+        if (s.alive && b.kind != BodyKind::static_body) {
+            b.velocity = states[i].velocity;
+            const float angle = wrap_angle(b.angle + b.angular_velocity * dt);
+            if (std::bit_cast<std::uint32_t>(angle) != std::bit_cast<std::uint32_t>(b.angle)) {
+                b.angle = angle;
+                turn(i);
+            }
+            if (b.kind != BodyKind::bullet) {
+                const Vec2 motion = dt * b.velocity;
+                if (b.kind == BodyKind::dynamic) {
+                    if (const auto* c = std::get_if<Circle>(&b.collider.local_shape())) {
+                        // More than half its radius in one step could carry it through a thin wall.
+                        s.fast = length(motion) > 0.5f * c->radius;
+                        if (s.fast) fast_circles.push_back(i);
+                    }
+                }
+                if (!s.fast) b.position += motion;
+                sync_proxy(i, motion, s.fast ? motion : Vec2{});
             }
         }
-        if (!s.fast) b.position += motion;
-        sync_proxy(i, motion, s.fast ? motion : Vec2{});
+        // Every collider but bullets' (they only cast) goes to the broadphase at its fat bounds.
+        positions[i] = b.position;
+        if (!s.alive || s.proxy < 0 || b.kind == BodyKind::bullet) continue;
+        const bool moves = detail::is_moving_kind(b.kind);
+        grid_items.push_back({broadphase.fat_bounds(s.proxy), i, moves});
+        grid_movers += moves ? 1 : 0;
+        pair_bodies[i].box = placement(i).box;  // for the narrowphase and resolve
     }
+    refattened.clear();  // the broadphase's pairs are over the fat bounds as they are now
 }
 
 // ---------------------------------------------------------------------------------------
@@ -353,23 +367,11 @@ void World::Impl::integrate(float dt) {
 // ---------------------------------------------------------------------------------------
 
 std::vector<Pair> World::Impl::broadphase_pairs() {
-    // Every collider but bullets' (they only cast), at its fat bounds; a pair needs one side
+    // The colliders' fat bounds (grid_items, gathered by integrate); a pair needs one side
     // that moves. The pairs are those whose fat bounds overlap, found either by a tree query
     // from each moving body or, faster when many things move, all at once by the grid: the
     // same pairs either way (tests/world/pair_grid_test.cpp).
-    grid_items.clear();
-    refattened.clear();  // the pairs below are over the fat bounds as they are now
-    positions.resize(slots.size());
-    std::size_t moving = 0;
-    for (std::uint32_t i = 0; i < slots.size(); ++i) {
-        const Slot& s = slots[i];
-        positions[i] = s.body.position;
-        if (!s.alive || s.proxy < 0 || s.body.kind == BodyKind::bullet) continue;
-        const bool moves = detail::is_moving_kind(s.body.kind);
-        grid_items.push_back({broadphase.fat_bounds(s.proxy), i, moves});
-        moving += moves ? 1 : 0;
-        pair_bodies[i].box = placement(i).box;  // for the narrowphase and resolve
-    }
+    const std::size_t moving = grid_movers;
     grid_pairs.clear();
     if (moving * 16 < grid_items.size()) {
         // Few movers among many static colliders (a tile map): a tree query from each mover
