@@ -52,7 +52,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
     const auto n_slots = static_cast<std::uint32_t>(slots.size());
 
     // Bullets, in id order.
-    for (std::uint32_t i = 0; i < n_slots; ++i) {
+    for (const std::uint32_t i : bullets) {
         if (!slots[i].alive || slots[i].body.kind != BodyKind::bullet) continue;
         const EntityId id = id_of(i);
         Vec2 from = slots[i].body.position;

@@ -148,6 +148,7 @@ struct World::Impl {
     // step's broadphase: with the candidate pairs, all a fast circle's sweep can meet.
     std::vector<std::uint32_t> refattened;
     std::vector<std::uint32_t> fast_circles;  // this step's, in slot order (integrate)
+    std::vector<std::uint32_t> bullets;       // this step's live bullets, in slot order (integrate)
     std::vector<Contact> contacts;          // after the last step, sorted by (a, b)
     std::vector<Event> events;
     std::vector<SweptPath> paths;

@@ -281,6 +281,7 @@ void solve_velocities(std::vector<BodyState>& motion, const std::vector<int>& le
 
 void World::Impl::integrate(float dt) {
     fast_circles.clear();
+    bullets.clear();
     // The step's packed copies of what its pair loops read of each body (one pass here
     // instead of a few cache misses a pair): state (with the working copy of the velocity,
     // from here to the end of resolve), pushability and filter keys.
@@ -338,7 +339,9 @@ void World::Impl::integrate(float dt) {
                 b.angle = angle;
                 turn(i);
             }
-            if (b.kind != BodyKind::bullet) {
+            if (b.kind == BodyKind::bullet) {
+                bullets.push_back(i);
+            } else {
                 const Vec2 motion = dt * b.velocity;
                 if (b.kind == BodyKind::dynamic) {
                     if (const auto* c = std::get_if<Circle>(&b.collider.local_shape())) {
