@@ -126,6 +126,30 @@ TEST(Placement, PlaceIntoAReusedShapeIsAtBitForBit) {
     }
 }
 
+// Collider::turn_into reuses `out` the same way (the world's turned collider): turned()'s
+// shape, a polygon's whole object the same bytes, whatever out held before (another kind,
+// another count, the same count, a non-finite angle's nowhere).
+TEST(Placement, TurnIntoAReusedShapeIsTurnedBitForBit) {
+    std::vector<Collider> all = colliders();
+    const std::vector<Vec2> triangle{{-3, -2}, {4, -1}, {3, 5}};
+    const std::vector<Vec2> other_quad{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    all.push_back(Collider::polygon(*make_polygon(triangle)));
+    all.push_back(Collider::polygon(*make_polygon(other_quad)));
+    Rng rng(11);
+    Shape out;
+    for (int k = 0; k < 2000; ++k) {
+        const Collider& c = all[rng.below(static_cast<std::uint32_t>(all.size()))];
+        float a = k % 50 == 0 ? kNan : rng.uniform(-4.0f, 4.0f);
+        if (k % 43 == 0) a = kInf;
+        const Shape expected = c.turned(a);
+        c.turn_into(a, out);
+        ASSERT_TRUE(same(out, expected)) << name_of(c.kind()) << " #" << k;
+        if (const auto* poly = std::get_if<Polygon>(&out)) {
+            ASSERT_EQ(std::memcmp(poly, &std::get<Polygon>(expected), sizeof(Polygon)), 0) << "#" << k;
+        }
+    }
+}
+
 TEST(Placement, NonFiniteAngleOrPositionMeetsNothing) {
     for (const Collider& c : colliders()) {
         for (const float a : {kNan, kInf, -kInf}) {

@@ -148,6 +148,21 @@ Polygon Polygon::rotated(Rot q) const {
     return out;
 }
 
+void Polygon::rotated_into(Rot q, Polygon& out) const {
+    if (out.count_ != count_) {
+        out = rotated(q);
+        return;
+    }
+    for (int i = 0; i < count_; ++i) {
+        out.points_[i] = rotate(q, points_[i]);
+        out.normals_[i] = rotate(q, normals_[i]);
+        if (!finite(out.points_[i]) || !finite(out.normals_[i])) {
+            out = Polygon{};
+            return;
+        }
+    }
+}
+
 namespace {
 Aabb bounds_of_points(const Vec2* p, int n) {
     Aabb b{p[0], p[0]};

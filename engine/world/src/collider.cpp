@@ -77,20 +77,39 @@ Collider Collider::mask(std::shared_ptr<const Mask> mask, int offset_x, int offs
 
 Shape Collider::placed(Vec2 position, float angle) const { return at(turned(angle), position); }
 
+namespace {
+struct Turn {
+    Rot q;
+    float angle;
+    Shape operator()(const Aabb& b) const { return b; }  // never turns
+    Shape operator()(const Obb& b) const { return Obb{rotate(q, b.center), b.half, b.angle() + angle}; }
+    Shape operator()(const Circle& c) const { return Circle{rotate(q, c.center), c.radius}; }
+    Shape operator()(const Segment& s) const { return Segment{rotate(q, s.a), rotate(q, s.b)}; }
+    Shape operator()(const Polygon& p) const { return p.rotated(q); }
+    Shape operator()(const PlacedMask& m) const { return m; }  // never turns
+};
+}  // namespace
+
 Shape Collider::turned(float angle) const {
     if (!std::isfinite(angle)) return nowhere();
+    return std::visit(Turn{Rot::from_angle(angle), angle}, shape_);
+}
+
+void Collider::turn_into(float angle, Shape& out) const {
+    if (!std::isfinite(angle)) {
+        out = nowhere();
+        return;
+    }
     const Rot q = Rot::from_angle(angle);
-    struct Turn {
-        Rot q;
-        float angle;
-        Shape operator()(const Aabb& b) const { return b; }  // never turns
-        Shape operator()(const Obb& b) const { return Obb{rotate(q, b.center), b.half, b.angle() + angle}; }
-        Shape operator()(const Circle& c) const { return Circle{rotate(q, c.center), c.radius}; }
-        Shape operator()(const Segment& s) const { return Segment{rotate(q, s.a), rotate(q, s.b)}; }
-        Shape operator()(const Polygon& p) const { return p.rotated(q); }
-        Shape operator()(const PlacedMask& m) const { return m; }  // never turns
-    };
-    return std::visit(Turn{q, angle}, shape_);
+    // A polygon into the polygon already there (a Shape is as large as a Polygon: building
+    // one and copying it was most of turning one); the other shapes are small.
+    const Polygon* from = std::get_if<Polygon>(&shape_);
+    Polygon* to = std::get_if<Polygon>(&out);
+    if (from != nullptr && to != nullptr) {
+        from->rotated_into(q, *to);
+        return;
+    }
+    out = std::visit(Turn{q, angle}, shape_);
 }
 
 namespace {

@@ -58,7 +58,7 @@ Shape World::Impl::placed_at(std::uint32_t index, Vec2 position) const {
 
 void World::Impl::turn(std::uint32_t index) {
     detail::Slot& s = slots[index];
-    s.turned = s.body.collider.turned(s.body.angle);
+    s.body.collider.turn_into(s.body.angle, s.turned);
     s.turned_angle = s.body.angle;
     s.turned_valid = std::isfinite(s.body.angle);
     placements[index].valid = false;  // the collider may have changed

@@ -203,6 +203,8 @@ public:
     // Rotated by q about the origin: rotated(xf.q).moved(xf.p) is transformed(xf), bit for
     // bit (the world turns a collider once per angle and moves it for each placement).
     Polygon rotated(Rot q) const;
+    // out = rotated(q), writing only the vertices in use when out already has this count.
+    void rotated_into(Rot q, Polygon& out) const;
 
 private:
     friend std::optional<Polygon> make_polygon(std::span<const Vec2> points, std::string* error);

@@ -177,6 +177,8 @@ public:
     // origin, once per angle (the sines and cosines); at(turned(a), p) is placed(p, a), bit
     // for bit.
     Shape turned(float angle) const;
+    // out = turned(angle), reusing out's storage (as place() below).
+    void turn_into(float angle, Shape& out) const;
     static Shape at(const Shape& turned, Vec2 position);
     // out = at(turned, position), reusing out's storage (a polygon's vertices are written in
     // place rather than copied three times through temporaries).
