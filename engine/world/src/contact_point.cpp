@@ -18,18 +18,22 @@ struct Feature {
 };
 
 Feature extreme(std::span<const Vec2> points, Vec2 d) {
+    float along[kMaxPolygonVertices];  // dot(p, d), each taken once
     float best = -INFINITY;
     float scale = 1.0f;
-    for (Vec2 p : points) {
-        best = fmax_inline(best, dot(p, d));
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Vec2 p = points[i];
+        along[i] = dot(p, d);
+        best = fmax_inline(best, along[i]);
         scale = fmax_inline(scale, fmax_inline(std::fabs(p.x), std::fabs(p.y)));
     }
     // Vertices within rounding of the extreme form an edge facing d.
     const float tol = 1e-5f * scale;
     Feature f;
     const Vec2 t = perp(d);
-    for (Vec2 p : points) {
-        if (dot(p, d) < best - tol) continue;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Vec2 p = points[i];
+        if (along[i] < best - tol) continue;
         if (f.count < 2) {
             f.p[f.count++] = p;
         } else {  // keep the two furthest apart along the edge
