@@ -165,6 +165,8 @@ struct World::Impl {
     EntityId id_of(std::uint32_t index) const { return {index, slots[index].generation}; }
     Shape placed(std::uint32_t index) const;
     Shape placed_at(std::uint32_t index, Vec2 position) const;  // at another position
+    // out = placed_at(index, position), reusing out's storage (see Collider::place).
+    void place_into(std::uint32_t index, Vec2 position, Shape& out) const;
     // placed(index) and its bounds, computed only when the body moved or turned since the
     // last call. The reference is valid until the next create().
     const detail::Placement& placement(std::uint32_t index);

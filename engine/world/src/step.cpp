@@ -422,6 +422,7 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
                         "candidate pairs out of (a, b) order");
     const auto before = [](const Contact& c, EntityId a, EntityId b) { return c.a != a ? c.a < a : c.b < b; };
     std::size_t last_at = 0;
+    Shape b_back;  // a body moved back for a kept contact: one shape's storage for them all
     const auto last_step = [&](EntityId a, EntityId b) -> const Contact* {
         while (last_at < contacts.size() && before(contacts[last_at], a, b)) ++last_at;
         return (last_at < contacts.size() && contacts[last_at].a == a && contacts[last_at].b == b) ? &contacts[last_at]
@@ -458,7 +459,7 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
         const Contact* last = last_step({p.a, ba.generation}, {p.b, bb.generation});
         if (last == nullptr) continue;
         constexpr float kSpeculative = 1.0f;  // px
-        const Shape b_back = placed_at(p.b, slots[p.b].body.position - kSpeculative * last->normal);
+        place_into(p.b, positions[p.b] - kSpeculative * last->normal, b_back);
         const Manifold back = collide(pa.shape, b_back);
         if (!back.hit) continue;
         Manifold touching = back;
@@ -694,6 +695,7 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
     // that moved and bounds that now touch are tested again (placed where they are now; the
     // placements stay the narrowphase's), and the overlapping ones join the passes.
     constexpr float kBoundsMargin = 1.0f / 64.0f;  // px: rounding of placement, up to |x| = 1e5
+    Shape join_a, join_b;  // the pair tested, placed where it is now (storage reused)
     const auto join = [&](std::uint32_t k) {
         if (!apart[k]) return false;
         const Pair& p = push_pairs[k];
@@ -702,11 +704,11 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
                          kBoundsMargin)) {
             return false;
         }
-        const Shape sa = placed_at(p.a, moves[p.a].position);
-        const Shape sb = placed_at(p.b, moves[p.b].position);
-        const Manifold m = collide(sa, sb);
+        place_into(p.a, moves[p.a].position, join_a);
+        place_into(p.b, moves[p.b].position, join_b);
+        const Manifold m = collide(join_a, join_b);
         if (!m.hit || !(m.depth > settled)) return false;
-        add(p.a, p.b, sa, sb, m, m.depth, moves[p.b].moved_by - moves[p.a].moved_by);
+        add(p.a, p.b, join_a, join_b, m, m.depth, moves[p.b].moved_by - moves[p.a].moved_by);
         apart[k] = 0;
         return true;
     };

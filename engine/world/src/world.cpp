@@ -56,6 +56,15 @@ Shape World::Impl::placed_at(std::uint32_t index, Vec2 position) const {
     return turned_current(s) ? Collider::at(s.turned, position) : s.body.collider.placed(position, s.body.angle);
 }
 
+void World::Impl::place_into(std::uint32_t index, Vec2 position, Shape& out) const {
+    const detail::Slot& s = slots[index];
+    if (turned_current(s)) {
+        Collider::place(s.turned, position, out);
+    } else {
+        out = s.body.collider.placed(position, s.body.angle);
+    }
+}
+
 void World::Impl::turn(std::uint32_t index) {
     detail::Slot& s = slots[index];
     s.body.collider.turn_into(s.body.angle, s.turned);
