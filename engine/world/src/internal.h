@@ -60,6 +60,9 @@ struct PairBody {
     Aabb box;               // placement's bounds at the broadphase (bodies with a proxy)
     float pushable = 0.0f;  // pushability(body)
     std::uint32_t generation = 0;
+    std::uint32_t layer = 0;          // the filter's fields (may_meet)
+    std::uint32_t collides_with = 0;
+    EntityId ignore;
 };
 
 // A body's position during resolve's passes, and how far it moved since the narrowphase.
@@ -68,10 +71,15 @@ struct Moving {
     Vec2 moved_by;
 };
 
-// A candidate or touching pair; a.index < b.index.
+// A candidate pair; a.index < b.index. broadphase_pairs reads both bodies' packed records
+// once for its filter, and keeps here what the later loops ask of the pair first, so that
+// they need not read them again (the other body of a pair is anywhere in memory).
 struct Pair {
     std::uint32_t a = 0;
     std::uint32_t b = 0;
+    bool touching = false;    // their bounds (PairBody::box) touch
+    bool trigger = false;     // one of them is a trigger
+    bool resolvable = false;  // resolvable(pushabilities): resolution moves one of them
 };
 
 // The point where two placed shapes meet, given their manifold (contact_point.cpp).
@@ -112,6 +120,10 @@ inline bool may_meet(const MeetKey& a, const MeetKey& b) {
 inline bool may_meet(const EntityDesc& a, EntityId a_id, const EntityDesc& b, EntityId b_id) {
     return may_meet(meet_key(a, a_id), meet_key(b, b_id));
 }
+inline bool may_meet(const PairBody& a, std::uint32_t a_index, const PairBody& b, std::uint32_t b_index) {
+    return may_meet(MeetKey{{a_index, a.generation}, a.ignore, a.layer, a.collides_with},
+                    MeetKey{{b_index, b.generation}, b.ignore, b.layer, b.collides_with});
+}
 // Resolution moves one of them: no trigger, and at least one body with inverse mass > 0.
 // On packed data (resolve keeps one float a body): -1 for a trigger, else the resolution
 // inverse mass.
@@ -140,8 +152,7 @@ struct World::Impl {
     // EntityDesc spans several cache lines, and there are tens of thousands of pairs).
     // Filled by integrate:
     std::vector<detail::BodyState> states;
-    std::vector<detail::PairBody> pair_bodies;  // pushable, generation; box after the motion
-    std::vector<detail::MeetKey> meet_keys;  // detail::meet_key(body, id)
+    std::vector<detail::PairBody> pair_bodies;  // all but the box; the box after the motion
     // and, after the motion, for the broadphase, the narrowphase and resolve:
     std::vector<Vec2> positions;           // body.position (every slot)
     // The slots whose fat bounds changed (proxy made, re-fattened or dropped) since the

@@ -181,12 +181,16 @@ struct EdgesByBody {
 // changes, in linear time). The sources are the immovable bodies of `seeds` (pairs, which
 // include the edges). Deterministic: the shortest distances depend only on the edges and the
 // set of sources, not on the order they are found in.
+std::pair<std::uint32_t, std::uint32_t> ends(const Pair& p) { return {p.a, p.b}; }
+std::pair<std::uint32_t, std::uint32_t> ends(const std::pair<std::uint32_t, std::uint32_t>& p) { return p; }
+
 template <typename Edges, typename Seeds>
 std::vector<int> ground_levels(const std::vector<float>& inverse_mass, const Edges& edges, const Seeds& seeds) {
     std::vector<int> level(inverse_mass.size(), kUnreached);
     const EdgesByBody by_body(inverse_mass.size(), edges);
     std::vector<std::uint32_t> queue;
-    for (const auto& [a, b] : seeds) {
+    for (const auto& seed : seeds) {
+        const auto [a, b] = ends(seed);
         for (std::uint32_t i : {a, b}) {
             if (level[i] != 0 && inverse_mass[i] == 0.0f) {
                 level[i] = 0;
@@ -287,7 +291,6 @@ void World::Impl::integrate(float dt) {
     // from here to the end of resolve), pushability and filter keys.
     states.resize(slots.size());
     pair_bodies.resize(slots.size());
-    meet_keys.resize(slots.size());
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         Slot& s = slots[i];
         EntityDesc& b = s.body;
@@ -296,9 +299,12 @@ void World::Impl::integrate(float dt) {
         const bool still = b.kind == BodyKind::static_body;
         states[i] = {detail::contact_velocity(b.velocity, still), {}, detail::resolution_inverse_mass(b), b.friction,
                      b.restitution, still};
-        pair_bodies[i].pushable = detail::pushability(b);
-        pair_bodies[i].generation = s.generation;
-        meet_keys[i] = detail::meet_key(b, id_of(i));
+        detail::PairBody& pb = pair_bodies[i];
+        pb.pushable = detail::pushability(b);
+        pb.generation = s.generation;
+        pb.layer = b.layer;
+        pb.collides_with = b.collides_with;
+        pb.ignore = b.ignore;
     }
     // Bodies resting on something keep resting: the contacts carried from the last step take
     // the approach out of this step's velocity before it moves anything (Box2D's order). A
@@ -309,7 +315,7 @@ void World::Impl::integrate(float dt) {
     for (const Contact& c : contacts) {
         const std::uint32_t a = c.a.index, b = c.b.index;
         if (c.trigger || c.corner || !detail::resolvable(pair_bodies[a].pushable, pair_bodies[b].pushable) ||
-            !detail::may_meet(meet_keys[a], meet_keys[b])) {
+            !detail::may_meet(pair_bodies[a], a, pair_bodies[b], b)) {
             continue;
         }
         carried.push_back(velocity_contact(a, states[a], b, states[b], c.normal, 0.0f));
@@ -401,9 +407,12 @@ std::vector<Pair> World::Impl::broadphase_pairs() {
     std::vector<Pair> pairs;
     pairs.reserve(grid_pairs.size());
     for (const detail::GridPair& g : grid_pairs) {
-        if (pair_bodies[g.a].pushable < 0.0f && pair_bodies[g.b].pushable < 0.0f) continue;  // two triggers
-        if (!detail::may_meet(meet_keys[g.a], meet_keys[g.b])) continue;
-        pairs.push_back({g.a, g.b});
+        const detail::PairBody& ba = pair_bodies[g.a];
+        const detail::PairBody& bb = pair_bodies[g.b];
+        if (ba.pushable < 0.0f && bb.pushable < 0.0f) continue;  // two triggers
+        if (!detail::may_meet(ba, g.a, bb, g.b)) continue;
+        pairs.push_back({g.a, g.b, touch(ba.box, bb.box), ba.pushable < 0.0f || bb.pushable < 0.0f,
+                         detail::resolvable(ba.pushable, bb.pushable)});
     }
     return pairs;
 }
@@ -420,43 +429,45 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
     JOSTLE_DEBUG_ASSERT(std::is_sorted(pairs.begin(), pairs.end(),
                                        [](const Pair& x, const Pair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; }),
                         "candidate pairs out of (a, b) order");
-    const auto before = [](const Contact& c, EntityId a, EntityId b) { return c.a != a ? c.a < a : c.b < b; };
     std::size_t last_at = 0;
     Shape b_back;  // a body moved back for a kept contact: one shape's storage for them all
-    const auto last_step = [&](EntityId a, EntityId b) -> const Contact* {
-        while (last_at < contacts.size() && before(contacts[last_at], a, b)) ++last_at;
-        return (last_at < contacts.size() && contacts[last_at].a == a && contacts[last_at].b == b) ? &contacts[last_at]
-                                                                                                    : nullptr;
+    // The last step's contact of a pair, if any. Ids order by index first, as the pairs do, so
+    // the cursor compares indices, and generations only where they match (a slot's contacts
+    // go when its entity does, so they always match; checked all the same).
+    const auto last_step = [&](const Pair& p) -> const Contact* {
+        const auto before = [&](const Contact& c) { return c.a.index != p.a ? c.a.index < p.a : c.b.index < p.b; };
+        while (last_at < contacts.size() && before(contacts[last_at])) ++last_at;
+        if (last_at == contacts.size()) return nullptr;
+        const Contact& c = contacts[last_at];
+        if (c.a.index != p.a || c.b.index != p.b) return nullptr;
+        const bool same = c.a.generation == pair_bodies[p.a].generation && c.b.generation == pair_bodies[p.b].generation;
+        return same ? &c : nullptr;
     };
     for (const Pair& p : pairs) {
-        const detail::PairBody& ba = pair_bodies[p.a];
-        const detail::PairBody& bb = pair_bodies[p.b];
-        const bool trigger = ba.pushable < 0.0f || bb.pushable < 0.0f;
         // Bounds first: cheap, and for masks it is the lecture's first test (09-30). The
-        // packed boxes turn most candidates away without reading their placements: they are
-        // the placements' bounds, usable (finite and in order: a body has a proxy), so
-        // touching is exactly overlaps(pa.box, pb.box).
+        // packed boxes (p.touching, from broadphase_pairs) turn most candidates away without
+        // reading their placements: they are the placements' bounds, usable (finite and in
+        // order: a body has a proxy), so touching is exactly overlaps(pa.box, pb.box).
         // The broadphase placed every body and nothing has moved since, so the placements
         // are read directly (checking them against the bodies would be a cache miss each).
-        Manifold m;
         const detail::Placement& pa = placements[p.a];
-        const detail::Placement& pb = placements[p.b];
-        if (touch(ba.box, bb.box)) {
+        if (p.touching) {
+            const detail::Placement& pb = placements[p.b];
             JOSTLE_DEBUG_ASSERT(placement_current(p.a) && placement_current(p.b), "a stale placement in the narrowphase");
             JOSTLE_DEBUG_ASSERT(overlaps(pa.box, pb.box), "packed bounds that touch and placements' that do not");
-            m = collide(pa.shape, pb.shape);
-        }
-        if (m.hit) {
-            found.push_back({p, m, 0.0f, trigger, detail::corner_touch(pa.shape, pb.shape, m)});
-            continue;
+            const Manifold m = collide(pa.shape, pb.shape);
+            if (m.hit) {
+                found.push_back({p, m, 0.0f, p.trigger, detail::corner_touch(pa.shape, pb.shape, m)});
+                continue;
+            }
         }
         // Bodies that touched last step and now miss by a rounding error (or a small gap)
         // stay in contact speculatively: B moved back toward A along the last normal by
         // kSpeculative shows how far apart they are. Without this a resting stack loses a
         // contact whenever rounding opens a 1e-5 px gap, and the body above falls through
         // a step of gravity.
-        if (trigger || !detail::resolvable(ba.pushable, bb.pushable)) continue;
-        const Contact* last = last_step({p.a, ba.generation}, {p.b, bb.generation});
+        if (p.trigger || !p.resolvable) continue;
+        const Contact* last = last_step(p);
         if (last == nullptr) continue;
         constexpr float kSpeculative = 1.0f;  // px
         place_into(p.b, positions[p.b] - kSpeculative * last->normal, b_back);
@@ -477,9 +488,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
     // From the packed pushabilities (broadphase_pairs): a trigger's -1 is inverse mass 0.
     std::vector<float> inverse_mass(slots.size());
     for (std::size_t i = 0; i < slots.size(); ++i) inverse_mass[i] = max0(pair_bodies[i].pushable);
-    const auto resolvable = [&](const Pair& p) {
-        return detail::resolvable(pair_bodies[p.a].pushable, pair_bodies[p.b].pushable);
-    };
+    const auto resolvable = [](const Pair& p) { return p.resolvable; };
     std::vector<const NarrowContact*> contacts_in;
     for (const NarrowContact& c : found) {
         if (resolvable(c.pair)) contacts_in.push_back(&c);
