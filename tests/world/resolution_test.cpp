@@ -759,5 +759,74 @@ TEST(ResolutionPasses, contacts_with_something_immovable_have_the_last_word) {
     EXPECT_LT(w.get(a)->position.x, 0.0f);
 }
 
+// A NaN velocity stays with its body: a static floor under it and another box resting on the
+// same floor keep finite positions and velocities (the floor is immovable for impulses: its
+// velocity as contacts see it stays zero, whatever a NaN impulse would add).
+TEST(ResolutionNan, a_nan_velocity_does_not_spread_through_a_static_floor) {
+    World w(WorldDesc{.gravity = {0.0f, 980.0f}});
+    const EntityId floor = w.create({.position = {0.0f, 20.0f}, .collider = Collider::aabb({200.0f, 10.0f})});
+    const EntityId x = w.create({.kind = BodyKind::dynamic, .position = {-50.0f, 5.0f}, .collider = Collider::aabb({5.0f, 5.0f})});
+    const EntityId y = w.create({.kind = BodyKind::dynamic, .position = {50.0f, 5.0f}, .collider = Collider::aabb({5.0f, 5.0f})});
+    for (int i = 0; i < 10; ++i) w.step(kDt);
+    ASSERT_EQ(w.contacts().size(), 2u);  // both resting: the next step carries both contacts
+    w.set_velocity(x, {kNan, 0.0f});
+    // A new box lands on the floor in the same step (its first contact with it).
+    const EntityId z = w.create({.kind = BodyKind::dynamic, .position = {0.0f, 5.5f}, .collider = Collider::aabb({5.0f, 5.0f})});
+    for (int i = 0; i < 3; ++i) w.step(kDt);
+    EXPECT_EQ(position_of(w, floor), xy(0.0f, 20.0f));
+    EXPECT_TRUE(std::isfinite(w.get(floor)->velocity.x) && std::isfinite(w.get(floor)->velocity.y));
+    for (const EntityId id : {y, z}) {
+        EXPECT_TRUE(std::isfinite(position_of(w, id).x) && std::isfinite(position_of(w, id).y)) << id.index;
+        EXPECT_TRUE(std::isfinite(w.get(id)->velocity.x) && std::isfinite(w.get(id)->velocity.y)) << id.index;
+    }
+}
+
+// A circle inside a polygon whose nearest vertex happens to lie along the face normal is a
+// face contact, pushed out through the face (not taken for a circle at that vertex).
+TEST(ResolutionPasses, a_circle_inside_a_polygon_is_pushed_out_through_the_face) {
+    World w(WorldDesc{.gravity = {0.0f, 0.0f}});
+    const std::vector<Vec2> tri{{0.0f, 0.0f}, {10.0f, -15.0f}, {10.0f, 15.0f}};
+    const EntityId t = w.create({.position = {0.0f, 0.0f}, .collider = Collider::polygon(*make_polygon(tri))});
+    const EntityId c = w.create({.kind = BodyKind::dynamic, .position = {9.0f, 0.0f}, .collider = Collider::circle(2.0f)});
+    w.step(kDt);
+    const EntityDesc& tri_body = *w.get(t);
+    const EntityDesc& circle = *w.get(c);
+    const Manifold m = collide(tri_body.collider.placed(tri_body.position, 0.0f), circle.collider.placed(circle.position, 0.0f));
+    EXPECT_TRUE(!m.hit || m.depth <= WorldDesc{}.slop) << "the circle is " << m.depth << " px inside";
+    EXPECT_NEAR(circle.position.x, 12.0f, 1e-3f);
+}
+
+// A circle at a static box's corner, pushed sideways by another body into the face's region
+// during the passes, is not left deeper than the slop: its contact follows it from the corner
+// to the face.
+TEST(ResolutionPasses, a_circle_pushed_from_a_corner_onto_the_face_is_settled) {
+    World w(WorldDesc{.gravity = {0.0f, 0.0f}});
+    const EntityId box = w.create({.position = {-20.0f, 20.0f}, .collider = Collider::aabb({20.0f, 20.0f})});  // corner at (0, 0)
+    const EntityId c = w.create({.kind = BodyKind::dynamic, .position = {0.5f, -9.95f}, .collider = Collider::circle(10.0f)});
+    // A box 4 px into the circle's right side: the pair splits the push, 2 px to the left each.
+    w.create({.kind = BodyKind::dynamic, .position = {10.5f + 5.0f - 4.0f, -9.95f}, .collider = Collider::aabb({5.0f, 5.0f}),
+              .inverse_mass = 1.0f / (3.14159265f * 100.0f)});
+    w.step(kDt);
+    const EntityDesc& b = *w.get(box);
+    const EntityDesc& circle = *w.get(c);
+    const Manifold m = collide(b.collider.placed(b.position, 0.0f), circle.collider.placed(circle.position, 0.0f));
+    EXPECT_LT(circle.position.x, 0.0f) << "the push reached the face's region";
+    EXPECT_TRUE(!m.hit || m.depth <= WorldDesc{}.slop) << "the circle is " << m.depth << " px inside the box";
+}
+
+// A circle of negative radius meets nothing (the MANUAL), fast or not: its inverted bounds get
+// no proxy even when a fast circle's bounds would also cover its motion (a Debug build used to
+// stop there on an assertion about the packed bounds).
+TEST(ResolutionNan, a_fast_circle_of_negative_radius_meets_nothing) {
+    World w(WorldDesc{.gravity = {0.0f, 0.0f}});
+    w.create({.position = {0.0f, 0.0f}, .collider = Collider::aabb({50.0f, 50.0f})});
+    const EntityId c = w.create(
+        {.kind = BodyKind::dynamic, .position = {0.0f, 0.0f}, .velocity = {600.0f, 600.0f}, .collider = Collider::circle(-1.0f)});
+    for (int i = 0; i < 3; ++i) w.step(kDt);
+    EXPECT_TRUE(w.contacts().empty());
+    EXPECT_TRUE(w.events().empty());
+    EXPECT_VEC_NEAR(position_of(w, c), xy(30.0f, 30.0f), 1e-3f);  // 600 px/s for 3 steps, unhindered
+}
+
 }  // namespace
 }  // namespace jostle

@@ -145,11 +145,15 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
             if (rank[p.b] != UINT32_MAX) partners[next[rank[p.b]]++] = p.a;
         }
     }
+    // Which bodies' fat bounds changed before the sweeps (a circle's own change only after its
+    // sweep, so this is all a circle asks of itself).
+    std::vector<std::uint8_t> changed(n_slots, 0);
+    for (const std::uint32_t j : refattened) changed[j] = 1;
     // Calls f(j) for every collider whose fat bounds overlap `region`, circle i's sweep (some
     // more than once; the best hit is the same whichever order they come in).
     const auto colliders_near = [&](std::uint32_t i, const Aabb& region, const auto& f) {
         const int proxy = slots[i].proxy;
-        const bool unchanged = proxy >= 0 && std::find(refattened.begin(), refattened.end(), i) == refattened.end();
+        const bool unchanged = proxy >= 0 && changed[i] == 0;
         const Aabb own = proxy >= 0 ? broadphase.fat_bounds(proxy) : Aabb{};
         if (!unchanged || !(own.min.x <= region.min.x && own.min.y <= region.min.y && region.max.x <= own.max.x &&
                             region.max.y <= own.max.y)) {

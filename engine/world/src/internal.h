@@ -153,7 +153,7 @@ struct World::Impl {
     // Filled by integrate:
     std::vector<detail::BodyState> states;
     std::vector<detail::PairBody> pair_bodies;  // all but the box; the box after the motion
-    // and, after the motion, for the broadphase, the narrowphase and resolve:
+    // and, after the motion, for resolve (the narrowphase's positions) and kept contacts:
     std::vector<Vec2> positions;           // body.position (every slot)
     // The slots whose fat bounds changed (proxy made, re-fattened or dropped) since the
     // step's broadphase: with the candidate pairs, all a fast circle's sweep can meet.

@@ -2,6 +2,7 @@
 // sweeps, events). The sweeps phase is in continuous.cpp. See the MANUAL in jostle/world.h.
 #include <algorithm>
 #include <bit>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -19,8 +20,8 @@ using detail::Slot;
 
 namespace {
 
-// A superset of overlaps(): the same comparisons without the validity checks, inline and
-// without branches, to turn away candidates cheaply; overlaps() then decides.
+// overlaps()'s comparisons without its validity checks, inline and without branches: the
+// same answer for usable bounds (finite, in order), which are all a body with a proxy has.
 bool touch(const Aabb& a, const Aabb& b) {
     return (a.max.x >= b.min.x) & (a.min.x <= b.max.x) & (a.max.y >= b.min.y) & (a.min.y <= b.max.y);
 }
@@ -225,8 +226,10 @@ VelocityContact velocity_contact(std::uint32_t a, const BodyState& sa, std::uint
 }
 
 VelocityContact::Masses masses_of(float ima, float imb) {
+    // (1 / k of a denormal k overflows: the largest float instead, so that a resting contact's
+    // zero approach still makes a zero impulse, not 0 * inf.)
     const float k = ima + imb;
-    return {ima, imb, k > 0.0f ? 1.0f / k : 0.0f};
+    return {ima, imb, k > 0.0f ? fmin_inline(1.0f / k, FLT_MAX) : 0.0f};
 }
 
 void solve_velocity(std::vector<BodyState>& motion, VelocityContact& vc, bool shock) {
@@ -239,8 +242,11 @@ void solve_velocity(std::vector<BodyState>& motion, VelocityContact& vc, bool sh
     const float total = max0(vc.normal_impulse + (vc.target - vn) * inv_k);
     const float dn = total - vc.normal_impulse;
     vc.normal_impulse = total;
-    sa.velocity -= (ima * dn) * n;
-    sb.velocity += (imb * dn) * n;
+    // Only a body the contact can move takes the impulse: an immovable one keeps its velocity
+    // (zero, as contacts see a static body) even when a NaN or infinite velocity elsewhere
+    // makes the impulse NaN, so that a floor does not pass one body's NaN on to the others.
+    if (ima > 0.0f) sa.velocity -= (ima * dn) * n;
+    if (imb > 0.0f) sb.velocity += (imb * dn) * n;
     // Friction along the tangent, bounded by the normal impulse (Coulomb).
     const Vec2 t = perp(n);
     const float vt = dot(sb.velocity - sa.velocity, t);
@@ -248,12 +254,16 @@ void solve_velocity(std::vector<BodyState>& motion, VelocityContact& vc, bool sh
     const float total_t = std::clamp(vc.tangent_impulse - vt * inv_k, -limit, limit);
     const float dt_impulse = total_t - vc.tangent_impulse;
     vc.tangent_impulse = total_t;
-    const Vec2 dva = -(ima * dt_impulse) * t;
-    const Vec2 dvb = (imb * dt_impulse) * t;
-    sa.velocity += dva;
-    sb.velocity += dvb;
-    sa.friction_dv += dva;
-    sb.friction_dv += dvb;
+    if (ima > 0.0f) {
+        const Vec2 dva = -(ima * dt_impulse) * t;
+        sa.velocity += dva;
+        sa.friction_dv += dva;
+    }
+    if (imb > 0.0f) {
+        const Vec2 dvb = (imb * dt_impulse) * t;
+        sb.velocity += dvb;
+        sb.friction_dv += dvb;
+    }
 }
 
 // `passes` passes in the given order; the last one goes ground up with shock propagation,
@@ -485,7 +495,7 @@ std::vector<World::Impl::NarrowContact> World::Impl::narrowphase(const std::vect
 // ---------------------------------------------------------------------------------------
 
 void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::vector<Pair>& pairs, float dt) {
-    // From the packed pushabilities (broadphase_pairs): a trigger's -1 is inverse mass 0.
+    // From the packed pushabilities (integrate): a trigger's -1 is inverse mass 0.
     std::vector<float> inverse_mass(slots.size());
     for (std::size_t i = 0; i < slots.size(); ++i) inverse_mass[i] = max0(pair_bodies[i].pushable);
     const auto resolvable = [](const Pair& p) { return p.resolvable; };
@@ -536,7 +546,7 @@ void World::Impl::resolve(const std::vector<NarrowContact>& found, const std::ve
 
     // What friction took from the tangential velocity is taken from this step's motion too
     // (semi-implicit Euler), so a body that friction stops does not slide on for a step.
-    // The passes' working copy of the positions (from broadphase_pairs' packed copy: the
+    // The passes' working copy of the positions (from integrate's packed copy: the
     // narrowphase's), with each body's displacement since.
     std::vector<detail::Moving> moves(slots.size());
     for (std::size_t i = 0; i < slots.size(); ++i) moves[i].position = positions[i];
@@ -571,7 +581,10 @@ namespace {
 // axes), so a contact settled along n is settled.
 // A circle against another circle or a corner (a vertex region: 09-90) is a pair of points
 // instead, the centre and the other centre or the corner: its normal turns as they move, and
-// the depth is reach - |gap| along the gap between the points, as collide() finds it.
+// the depth is reach - |gap| along the gap between the points, as collide() finds it. A
+// centre pushed out of the corner's region (its cone of normals, between the normals of the
+// corner's two faces) is measured from the face it moved beside, as collide() would: the
+// distance to the corner would understate the depth there.
 // Mask MTDs are whole pixels: mask contacts are placed and tested again at each visit.
 enum class PassKind : std::uint8_t { along_normal, points, mask };
 
@@ -584,6 +597,10 @@ struct PassContact {
     float share_a = 0.0f, share_b = 0.0f;  // of a push: ima / (ima + imb), imb / (ima + imb)
     float shock_a = 0.0f, shock_b = 0.0f;  // the same under shock propagation
     PassKind kind = PassKind::along_normal;
+    // points at a corner: the corner's faces' outward normals, turning from n_prev to n_next
+    // through its region, and which body the corner is on (none: two circles, or a point).
+    enum class Corner : std::uint8_t { none, of_a, of_b } corner = Corner::none;
+    Vec2 n_prev, n_next;
 };
 
 // Each body's share of a push, 0 when neither moves (k = 0, or a NaN mass).
@@ -593,39 +610,62 @@ std::pair<float, float> push_shares(float ima, float imb) {
     return {ima / k, imb / k};
 }
 
-// Calls f(v) for each vertex of a convex shape (none for a circle or mask).
+// Calls f(v, n_prev, n_next) for each vertex of a convex shape (none for a circle or mask),
+// with the outward normals of the faces before and after it (its region lies between them,
+// counterclockwise as the collision module winds polygons). A segment's end has the two sides
+// of its line (the region beyond the end); a segment of zero length has no faces (zero normals).
 template <typename F>
 void for_each_vertex(const Shape& s, F&& f) {
     if (const auto* box = std::get_if<Aabb>(&s)) {
-        for (const Vec2 v : {box->min, Vec2{box->max.x, box->min.y}, box->max, Vec2{box->min.x, box->max.y}}) f(v);
+        const Vec2 v[4] = {box->min, Vec2{box->max.x, box->min.y}, box->max, Vec2{box->min.x, box->max.y}};
+        constexpr Vec2 kNormals[4] = {{0.0f, -1.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, {-1.0f, 0.0f}};  // face i: v[i] -> v[i+1]
+        for (int i = 0; i < 4; ++i) f(v[i], kNormals[(i + 3) % 4], kNormals[i]);
     } else if (const auto* obb = std::get_if<Obb>(&s)) {
         const Rot q = obb->rotation();
-        for (const Vec2 h : {obb->half, Vec2{-obb->half.x, obb->half.y}, -obb->half, Vec2{obb->half.x, -obb->half.y}}) {
-            f(obb->center + rotate(q, h));
+        const Vec2 h = obb->half;
+        const Vec2 corners[4] = {h, {-h.x, h.y}, -h, {h.x, -h.y}};
+        constexpr Vec2 kNormals[4] = {{0.0f, 1.0f}, {-1.0f, 0.0f}, {0.0f, -1.0f}, {1.0f, 0.0f}};  // face i: i -> i+1
+        for (int i = 0; i < 4; ++i) {
+            f(obb->center + rotate(q, corners[i]), rotate(q, kNormals[(i + 3) % 4]), rotate(q, kNormals[i]));
         }
     } else if (const auto* poly = std::get_if<Polygon>(&s)) {
-        for (const Vec2 v : poly->points()) f(v);
+        const int n = poly->count();
+        for (int i = 0; i < n; ++i) f(poly->points()[i], poly->normals()[(i + n - 1) % n], poly->normals()[i]);
     } else if (const auto* seg = std::get_if<Segment>(&s)) {
-        f(seg->a);
-        f(seg->b);
+        const Vec2 d = seg->b - seg->a;
+        const float len = length(d);
+        const Vec2 n = len > 0.0f ? Vec2{d.y / len, -d.x / len} : Vec2{};
+        f(seg->a, -n, n);
+        f(seg->b, n, -n);
     }
 }
 
+// Whether u (from a corner) lies in the corner's region, between the normals of its faces.
+bool in_corner_region(Vec2 u, Vec2 n_prev, Vec2 n_next) { return cross(n_prev, u) >= 0.0f && cross(u, n_next) >= 0.0f; }
+
 // The point of `other` that a hit `m` with `circle` came from, when it is a single point:
 // the other circle's centre, or a vertex whose region holds the centre (m's normal then runs
-// along the line from the vertex to the centre; a face's normal does not). `toward` is +1
-// when the circle is B (the normal runs from other to circle), -1 when it is A.
-std::optional<Vec2> point_feature(const Shape& other, const Circle& circle, const Manifold& m, float toward) {
-    if (const auto* c = std::get_if<Circle>(&other)) return c->center;
-    std::optional<Vec2> found;
+// along the line from the vertex to the centre, and m's depth is the radius less their
+// distance; a face's normal and depth do not). `toward` is +1 when the circle is B (the
+// normal runs from other to circle), -1 when it is A.
+struct PointFeature {
+    Vec2 point;
+    Vec2 n_prev, n_next;  // the corner's faces (zero for a circle's centre or a point)
+};
+std::optional<PointFeature> point_feature(const Shape& other, const Circle& circle, const Manifold& m, float toward) {
+    if (const auto* c = std::get_if<Circle>(&other)) return PointFeature{c->center, {}, {}};
+    std::optional<PointFeature> found;
     float nearest = INFINITY;
-    for_each_vertex(other, [&](Vec2 v) {
+    const float reach = circle.radius;
+    for_each_vertex(other, [&](Vec2 v, Vec2 n_prev, Vec2 n_next) {
         const Vec2 d = toward * (circle.center - v);  // along the normal in a vertex region
         const float len = length(d);
         if (!(len > 0.0f) || !(len < nearest)) return;
         nearest = len;
-        // The vertex region's normal is d / |d| (09-90), up to rounding.
-        found = length(Vec2{d.x / len, d.y / len} - m.normal) <= 1e-4f ? std::optional<Vec2>(v) : std::nullopt;
+        // The vertex region's normal is d / |d| (09-90), and its depth reach - |d|, up to rounding.
+        const bool along = length(Vec2{d.x / len, d.y / len} - m.normal) <= 1e-4f;
+        const bool deep = std::fabs((reach - len) - m.depth) <= 1e-4f * (1.0f + reach);
+        found = along && deep ? std::optional<PointFeature>(PointFeature{v, n_prev, n_next}) : std::nullopt;
     });
     return found;
 }
@@ -661,15 +701,25 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         if (std::holds_alternative<PlacedMask>(sa) || std::holds_alternative<PlacedMask>(sb)) {
             c.kind = PassKind::mask;
         } else if (const auto* cb = std::get_if<Circle>(&sb); cb != nullptr && m.hit) {
-            if (const std::optional<Vec2> pa = point_feature(sa, *cb, m, 1.0f)) {
+            if (const std::optional<PointFeature> pa = point_feature(sa, *cb, m, 1.0f)) {
                 const float ra = std::holds_alternative<Circle>(sa) ? std::get<Circle>(sa).radius : 0.0f;
-                c = {c.a, c.b, c.normal, 0.0f, (cb->center - *pa) - since, ra + cb->radius,
-                     c.share_a, c.share_b, c.shock_a, c.shock_b, PassKind::points};
+                c.kind = PassKind::points;
+                c.offset = 0.0f;
+                c.gap = (cb->center - pa->point) - since;
+                c.reach = ra + cb->radius;
+                c.corner = std::holds_alternative<Circle>(sa) ? PassContact::Corner::none : PassContact::Corner::of_a;
+                c.n_prev = pa->n_prev;
+                c.n_next = pa->n_next;
             }
         } else if (const auto* ca = std::get_if<Circle>(&sa); ca != nullptr && m.hit) {
-            if (const std::optional<Vec2> pb = point_feature(sb, *ca, m, -1.0f)) {
-                c = {c.a, c.b, c.normal, 0.0f, (*pb - ca->center) - since, ca->radius,
-                     c.share_a, c.share_b, c.shock_a, c.shock_b, PassKind::points};
+            if (const std::optional<PointFeature> pb = point_feature(sb, *ca, m, -1.0f)) {
+                c.kind = PassKind::points;
+                c.offset = 0.0f;
+                c.gap = (pb->point - ca->center) - since;
+                c.reach = ca->radius;
+                c.corner = PassContact::Corner::of_b;
+                c.n_prev = pb->n_prev;
+                c.n_next = pb->n_next;
             }
         }
         pcs.push_back(c);
@@ -745,10 +795,18 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         if (c.kind == PassKind::along_normal) {
             depth = c.offset - dot(mb.moved_by - ma.moved_by, c.normal);
         } else if (c.kind == PassKind::points) {
-            const Vec2 gap = c.gap + (mb.moved_by - ma.moved_by);
-            const float len = length(gap);
-            depth = c.reach - len;
-            if (len > 0.0f && len < INFINITY) normal = {gap.x / len, gap.y / len};  // else the last one
+            const Vec2 gap = c.gap + (mb.moved_by - ma.moved_by);  // from A's point to B's
+            const Vec2 u = c.corner == PassContact::Corner::of_b ? -gap : gap;  // from the corner
+            if (c.corner != PassContact::Corner::none && !(c.n_prev == Vec2{}) && !in_corner_region(u, c.n_prev, c.n_next)) {
+                // Beside a face now: its normal, and the centre's distance from its line.
+                const Vec2 face = dot(u, c.n_prev) >= dot(u, c.n_next) ? c.n_prev : c.n_next;
+                depth = c.reach - dot(u, face);
+                normal = c.corner == PassContact::Corner::of_a ? face : -face;
+            } else {
+                const float len = length(gap);
+                depth = c.reach - len;
+                if (len > 0.0f && len < INFINITY) normal = {gap.x / len, gap.y / len};  // else the narrowphase's
+            }
         } else {
             const Manifold m = collide(placed_at(c.a, ma.position), placed_at(c.b, mb.position));
             if (!m.hit) return 0.0f;
@@ -765,10 +823,13 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
             push_a = whole(push_a);
             push_b = whole(mtd) - push_a;
         }
+        // The displacements take what the positions moved, rounding included (far from the
+        // origin a push rounds to the positions' precision).
+        const Vec2 a_was = ma.position, b_was = mb.position;
         ma.position -= push_a;
         mb.position += push_b;
-        ma.moved_by -= push_a;
-        mb.moved_by += push_b;
+        ma.moved_by += ma.position - a_was;
+        mb.moved_by += mb.position - b_was;
         moved[c.a] |= static_cast<std::uint8_t>(wa > 0.0f);
         moved[c.b] |= static_cast<std::uint8_t>(wb > 0.0f);
         return depth;

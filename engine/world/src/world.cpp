@@ -101,7 +101,11 @@ const detail::Placement& World::Impl::placement(std::uint32_t index) {
 void World::Impl::sync_proxy(std::uint32_t index, Vec2 displacement, Vec2 sweep) {
     detail::Slot& s = slots[index];
     Aabb tight = placement(index).box;
-    if (sweep.x != 0.0f || sweep.y != 0.0f) tight = {min(tight.min, tight.min + sweep), max(tight.max, tight.max + sweep)};
+    // (Only bounds that are usable themselves: a shape with inverted bounds, such as a circle
+    // of negative radius, meets nothing, and its swept union must not give it a proxy.)
+    if ((sweep.x != 0.0f || sweep.y != 0.0f) && detail::Broadphase::usable(tight)) {
+        tight = {min(tight.min, tight.min + sweep), max(tight.max, tight.max + sweep)};
+    }
     const bool usable = s.alive && detail::Broadphase::usable(tight);
     if (!usable) {
         if (s.proxy < 0) return;
@@ -112,14 +116,14 @@ void World::Impl::sync_proxy(std::uint32_t index, Vec2 displacement, Vec2 sweep)
     } else if (!broadphase.move(s.proxy, tight, displacement)) {
         return;
     }
-    refattened.push_back(index);
+    if (in_step) refattened.push_back(index);  // between steps, the next broadphase sees it
 }
 
 void World::Impl::remove(std::uint32_t index) {
     detail::Slot& s = slots[index];
     if (s.proxy >= 0) {
         broadphase.destroy(s.proxy);
-        refattened.push_back(index);
+        if (in_step) refattened.push_back(index);
     }
     s.proxy = -1;
     s.alive = false;

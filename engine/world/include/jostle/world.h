@@ -39,12 +39,13 @@
 //                (dynamic, kinematic, trigger); angles += w * dt, wrapped to [-pi, pi].
 //                A dynamic circle moving more than half its radius this step is "fast": it
 //                is not moved here but swept in the sweeps phase.
-//   broadphase   tight bounds of every moved collider; fat bounds (fattened) are re-made
-//                only when the bounds leave them; the candidate pairs are every pair whose
-//                fat bounds overlap, at least one of them moving, found all at once by a
-//                uniform grid over those bounds (faster than one tree query per body; a
-//                b2DynamicTree over the fat bounds answers the sweeps' and World queries'
-//                regions, catching up only when queried), sorted by (lower id, higher id).
+//   broadphase   tight bounds of every moved collider (a fast circle's cover its motion too);
+//                fat bounds (fattened) are re-made only when the bounds leave them; the
+//                candidate pairs are every pair whose fat bounds overlap, at least one of them
+//                moving, found all at once by a uniform grid over those bounds (faster than
+//                one tree query per body; a b2DynamicTree over the fat bounds answers World
+//                queries' and bullets' regions, catching up only when queried), sorted by
+//                (lower id, higher id).
 //   narrowphase  collide(A, B) from the collision module for each candidate (A is the lower
 //                id); mask pairs test bounds first, then pixels over the overlap, then the
 //                integer mask MTD. A pair in contact last step that now misses (a rounding
@@ -69,8 +70,9 @@
 //                deeper than slop / 2 and nothing joined; the second half order contacts from
 //                the ground up and let the body nearer an immovable one stand still (shock
 //                propagation), so resting stacks end within `slop`. A crowd that uses up its
-//                passes unsettled leaves the rest to the next step, but the contacts with
-//                immovable bodies have the last word.
+//                passes unsettled leaves the rest to the next step; its contacts with
+//                immovable bodies (and new overlaps with them) get one more pass, last, so
+//                that its final pushes do not leave bodies in walls.
 //   sweeps       bullets in id order: segment cast from the old to the new position against
 //                everything they can hit (a bullet at rest casts nothing, so a stopped
 //                bullet reports its hit once); the first hit (ties: the lower id) is a bullet_hit
