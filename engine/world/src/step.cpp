@@ -759,8 +759,10 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         if (!apart[k]) return false;
         const Pair& p = push_pairs[k];
         if (!(moved[p.a] | moved[p.b])) return false;
-        if (!touch_moved(pair_bodies[p.a].box, moves[p.a].moved_by, pair_bodies[p.b].box, moves[p.b].moved_by,
-                         kBoundsMargin)) {
+        // (The bounds move by what the positions moved, rounding included: far from the origin
+        // that differs from the sum of the pushes, moved_by, by more than the margin allows.)
+        if (!touch_moved(pair_bodies[p.a].box, moves[p.a].position - positions[p.a], pair_bodies[p.b].box,
+                         moves[p.b].position - positions[p.b], kBoundsMargin)) {
             return false;
         }
         place_into(p.a, moves[p.a].position, join_a);
@@ -823,13 +825,10 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
             push_a = whole(push_a);
             push_b = whole(mtd) - push_a;
         }
-        // The displacements take what the positions moved, rounding included (far from the
-        // origin a push rounds to the positions' precision).
-        const Vec2 a_was = ma.position, b_was = mb.position;
         ma.position -= push_a;
         mb.position += push_b;
-        ma.moved_by += ma.position - a_was;
-        mb.moved_by += mb.position - b_was;
+        ma.moved_by -= push_a;
+        mb.moved_by += push_b;
         moved[c.a] |= static_cast<std::uint8_t>(wa > 0.0f);
         moved[c.b] |= static_cast<std::uint8_t>(wb > 0.0f);
         return depth;
