@@ -43,7 +43,7 @@ bool same_bits(const Aabb& a, const Aabb& b) {
 }
 
 // The broadphase as it was before the tree went lazy: every move checked against the tree's
-// own fat box and re-inserted at once (2 px margin, stretched by twice the motion up to 256
+// own fat box and re-inserted at once (kMargin, stretched by twice the motion up to 256
 // px; the tree adds b2_aabbExtension itself).
 class EagerTree {
 public:
@@ -70,7 +70,8 @@ private:
         return out;
     }
     static Aabb fatten(const Aabb& tight, Vec2 d) {
-        Aabb fat{{tight.min.x - 2.0f, tight.min.y - 2.0f}, {tight.max.x + 2.0f, tight.max.y + 2.0f}};
+        constexpr float m = detail::Broadphase::kMargin;
+        Aabb fat{{tight.min.x - m, tight.min.y - m}, {tight.max.x + m, tight.max.y + m}};
         const auto stretch = [](float v) { return std::fmin(std::fabs(2.0f * v), 256.0f); };
         if (d.x > 0.0f) fat.max.x += stretch(d.x);
         if (d.x < 0.0f) fat.min.x -= stretch(d.x);

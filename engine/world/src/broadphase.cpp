@@ -6,9 +6,6 @@
 namespace jostle::detail {
 
 namespace {
-// Fat bounds margin in pixels. Box2D's own b2_aabbExtension is 0.1 length units, tuned for
-// metres; in pixels a resting or slowly moving body would be re-fattened almost every step.
-constexpr float kMargin = 2.0f;
 // Tree bounds stay far inside float range so the tree's area heuristics stay finite.
 constexpr float kFar = 1e12f;
 }  // namespace
