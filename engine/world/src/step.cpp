@@ -232,8 +232,10 @@ VelocityContact::Masses masses_of(float ima, float imb) {
     return {ima, imb, k > 0.0f ? fmin_inline(1.0f / k, FLT_MAX) : 0.0f};
 }
 
-void solve_velocity(std::vector<BodyState>& motion, VelocityContact& vc, bool shock) {
-    const auto [ima, imb, inv_k] = vc.masses[shock ? 1 : 0];
+void solve_velocity(BodyState* motion, VelocityContact& vc, bool shock) {
+    // (Read in place: a structured binding copied the three floats through the stack.)
+    const VelocityContact::Masses& masses = vc.masses[shock ? 1 : 0];
+    const float ima = masses.ima, imb = masses.imb, inv_k = masses.inv_k;
     if (!(inv_k > 0.0f)) return;
     BodyState& sa = motion[vc.a];
     BodyState& sb = motion[vc.b];
@@ -277,11 +279,12 @@ void solve_velocities(std::vector<BodyState>& motion, const std::vector<int>& le
         vc.masses = {masses_of(vc.ima, vc.imb), masses_of(ima, imb)};
     }
     passes = std::max(passes, 1);
+    BodyState* const bodies = motion.data();
     for (int pass = 0; pass < passes; ++pass) {
         if (pass == passes - 1 && passes > 1) {
-            for (const std::uint32_t k : ground_up) solve_velocity(motion, vcs[k], true);
+            for (const std::uint32_t k : ground_up) solve_velocity(bodies, vcs[k], true);
         } else {
-            for (VelocityContact& vc : vcs) solve_velocity(motion, vc, false);
+            for (VelocityContact& vc : vcs) solve_velocity(bodies, vc, false);
         }
     }
 }
