@@ -113,9 +113,7 @@ TEST(CastPolygonBits, Avx2AndLoopAgree) {
 }
 
 // Every way of making a Polygon keeps the slots past its vertices zero (the AVX2 path reads 8
-// slots, and a nonzero normal there would act as an extra edge): make_polygon, the box
-// conversions, moved, moved_into (into a polygon of another count and of the same count),
-// rotated and transformed.
+// slots, and a nonzero normal there would act as an extra edge): test::polygons_made_every_way.
 TEST(CastPolygonBits, PolygonsMadeEveryWayAgreeWithTheLoop) {
     if (!detail::use_avx2_paths(true)) GTEST_SKIP() << "this CPU has no AVX2: the loop is the only path";
     Rng rng(0x510757u);
@@ -125,19 +123,8 @@ TEST(CastPolygonBits, PolygonsMadeEveryWayAgreeWithTheLoop) {
         const Polygon base = test::random_polygon(rng, 10.0f);
         const Vec2 shift{rng.uniform(-5.0f, 5.0f), rng.uniform(-5.0f, 5.0f)};
         const float angle = rng.uniform(-3.0f, 3.0f);
-        const Transform xf{shift, Rot::from_angle(angle)};
-        base.moved_into(shift, reused);
-        const Polygon same_count = reused;
-        base.moved_into(-shift, reused);  // the same count: only the vertices are written
-        const Polygon made[] = {base,
-                                to_polygon(Obb{shift, {rng.uniform(0.5f, 4.0f), rng.uniform(0.5f, 4.0f)}, angle}),
-                                to_polygon(Aabb{shift, shift + Vec2{2.0f, 3.0f}}),
-                                base.moved(shift),
-                                same_count,
-                                reused,
-                                base.rotated(xf.q),
-                                base.transformed(xf)};
-        for (const Polygon& poly : made) {
+        const Vec2 half{rng.uniform(0.5f, 4.0f), rng.uniform(0.5f, 4.0f)};
+        for (const Polygon& poly : test::polygons_made_every_way(base, shift, angle, half, reused)) {
             ASSERT_GE(poly.count(), 3);
             for (int k = 0; k < 20; ++k) {
                 const Vec2 from = pick_point(rng, poly);

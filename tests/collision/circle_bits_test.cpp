@@ -218,9 +218,8 @@ TEST(CircleBits, PolygonCircleEveryVertexCount) {
 }
 
 // Every way of making a Polygon keeps the slots past its vertices zero, which the AVX2 path's
-// early out counts on (a nonzero normal there would be a face of its own): make_polygon, the box
-// conversions, moved, moved_into (into a polygon of another count and of the same count),
-// rotated and transformed.
+// early out counts on (a nonzero normal there would be a face of its own):
+// test::polygons_made_every_way.
 TEST(CircleBits, PolygonsMadeEveryWay) {
     Draw g;
     Rng rng(0x510757u);
@@ -229,19 +228,8 @@ TEST(CircleBits, PolygonsMadeEveryWay) {
         const Polygon base = test::random_polygon(rng, 10.0f);
         const Vec2 shift{g.uniform(-5.0f, 5.0f), g.uniform(-5.0f, 5.0f)};
         const float angle = g.uniform(-3.0f, 3.0f);
-        const Transform xf{shift, Rot::from_angle(angle)};
-        base.moved_into(shift, reused);
-        const Polygon same_count = reused;
-        base.moved_into(-shift, reused);  // the same count: only the vertices are written
-        const Polygon made[] = {base,
-                                to_polygon(Obb{shift, {g.uniform(0.5f, 4.0f), g.uniform(0.5f, 4.0f)}, angle}),
-                                to_polygon(Aabb{shift, shift + Vec2{2.0f, 3.0f}}),
-                                base.moved(shift),
-                                same_count,
-                                reused,
-                                base.rotated(xf.q),
-                                base.transformed(xf)};
-        for (const Polygon& poly : made) {
+        const Vec2 half{g.uniform(0.5f, 4.0f), g.uniform(0.5f, 4.0f)};
+        for (const Polygon& poly : test::polygons_made_every_way(base, shift, angle, half, reused)) {
             for (int j = 0; j < 20; ++j) {
                 const Circle circle{{g.uniform(-25.0f, 25.0f), g.uniform(-25.0f, 25.0f)}, g.uniform(0.0f, 8.0f)};
                 SCOPED_TRACE(testing::Message() << poly.count() << " vertices, case " << k);

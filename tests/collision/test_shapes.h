@@ -169,6 +169,33 @@ inline Polygon random_polygon(Rng& rng, float extent = 20.0f) {
     return box_polygon(0, 0, 1, 1);
 }
 
+// The polygon `base` made again every way the module makes polygons: the box conversions (a
+// box of half size `half` at `shift`, turned by `angle`), moved, moved_into and rotated_into
+// into a polygon of another count and of the same count (`reused`, whose count the caller
+// changes between calls), rotated and transformed. The SIMD paths read the slots past a
+// polygon's vertices and count on them being zero, whichever way it was made.
+inline std::vector<Polygon> polygons_made_every_way(const Polygon& base, Vec2 shift, float angle, Vec2 half,
+                                                    Polygon& reused) {
+    const Transform xf{shift, Rot::from_angle(angle)};
+    Polygon turned_other_count = to_polygon(Aabb{shift, shift + Vec2{2.0f, 3.0f}});
+    base.rotated_into(xf.q, turned_other_count);  // another count, unless base has 4 vertices
+    base.moved_into(shift, reused);
+    const Polygon moved_other_count = reused;
+    base.moved_into(-shift, reused);  // the same count: only the vertices are written
+    Polygon turned_same_count = reused;
+    base.rotated_into(xf.q, turned_same_count);
+    return {base,
+            to_polygon(Obb{shift, half, angle}),
+            to_polygon(Aabb{shift, shift + Vec2{2.0f, 3.0f}}),
+            base.moved(shift),
+            moved_other_count,
+            reused,
+            base.rotated(xf.q),
+            turned_other_count,
+            turned_same_count,
+            base.transformed(xf)};
+}
+
 enum class Kind { aabb, obb, polygon, circle, segment };
 inline constexpr Kind kAllKinds[] = {Kind::aabb, Kind::obb, Kind::polygon, Kind::circle, Kind::segment};
 

@@ -681,122 +681,161 @@ bool touch_moved(const Aabb& a, Vec2 da, const Aabb& b, Vec2 db, float margin) {
            (a.max.y + margin >= b.min.y + d.y) & (a.min.y - margin <= b.max.y + d.y);
 }
 
-}  // namespace
+// resolve's position passes over one step's contacts, as the MANUAL describes them: the
+// contacts (PassContact), the candidate pairs still apart that pushes may bring together,
+// and the bodies' working positions.
+class PositionPasses {
+public:
+    PositionPasses(World::Impl& w, const std::vector<Pair>& push_pairs, const std::vector<float>& inverse_mass,
+                   const std::vector<int>& level, std::vector<detail::Moving>& moves, std::vector<std::uint8_t>& moved)
+        : w_(w), push_pairs_(push_pairs), inverse_mass_(inverse_mass), level_(level), moves_(moves), moved_(moved),
+          // A contact no deeper than half the slop is settled and not pushed: in a crowd most
+          // pushes are that small, each moves bodies that then disturb their neighbours, and
+          // the passes stop anyway once every contact is within it (Box2D likewise leaves the
+          // last linear slop uncorrected). Resting contacts so end within the slop.
+          settled_(std::fmax(0.5f * w.desc.slop, 0.0f)), apart_(push_pairs.size(), 1) {}
 
-void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const std::vector<Pair>& push_pairs,
-                                  const std::vector<float>& inverse_mass, const std::vector<int>& level,
-                                  std::vector<detail::Moving>& moves, std::vector<std::uint8_t>& moved) {
-    // A contact no deeper than half the slop is settled and not pushed: in a crowd most
-    // pushes are that small, each moves bodies that then disturb their neighbours, and the
-    // passes stop anyway once every contact is within it (Box2D likewise leaves the last
-    // linear slop uncorrected). Resting contacts so end within the slop, as documented.
-    const float settled = std::fmax(0.5f * desc.slop, 0.0f);
-    std::vector<PassContact> pcs;
-    pcs.reserve(found.size());
+    // The narrowphase's contacts (hits, and kept contacts a gap apart: negative overlap) are
+    // the passes' contacts; corner-to-corner touches have no true normal and wait with the
+    // other candidate pairs (apart_) until a push brings them into each other.
+    void take(const std::vector<World::Impl::NarrowContact>& found) {
+        contacts_.reserve(found.size());
+        for (std::size_t k = 0, f = 0; k < push_pairs_.size(); ++k) {
+            const Pair& p = push_pairs_[k];
+            while (f < found.size() && (found[f].pair.a < p.a || (found[f].pair.a == p.a && found[f].pair.b < p.b))) ++f;
+            if (f == found.size() || found[f].pair.a != p.a || found[f].pair.b != p.b || found[f].corner) {
+                if (immovable_in(p.a, p.b)) grounded_.push_back(static_cast<std::uint32_t>(k));
+                continue;
+            }
+            const World::Impl::NarrowContact& c = found[f];
+            const float overlap = c.separation > 0.0f ? -c.separation : c.manifold.depth;
+            // (At the narrowphase's placements: friction may have moved the bodies since. A
+            // kept contact a gap apart is pushed along its normal: its points are not in touch.)
+            Manifold m = c.manifold;
+            m.hit = c.separation <= 0.0f;
+            add(p.a, p.b, w_.placements[p.a].shape, w_.placements[p.b].shape, m, overlap, {});
+            apart_[k] = 0;
+        }
+        order();
+    }
+
+    void run(int passes) {
+        bool settled_all = false;
+        for (int pass = 0; pass < passes && !settled_all; ++pass) {
+            const bool shock = pass >= passes / 2;
+            // Whenever the passes settle every new overlap joins (and the passes go on if any
+            // did); before each shock pass those with something immovable, which the
+            // ground-up order takes first. (Joining every pair mid-way in a crowd that never
+            // settles cost a shape test for each of its many near misses, to find a few
+            // overlaps that the next step's narrowphase finds anyway.)
+            if (shock) join_new(/*grounded_only=*/true);
+            float deepest = 0.0f;
+            for (std::size_t r = 0; r < contacts_.size(); ++r) {
+                const float depth = visit(contacts_[shock ? ground_up_[r] : r], shock);  // >= 0
+                deepest = depth > deepest ? depth : deepest;
+            }
+            settled_all = deepest <= settled_ && join_new(false) == 0;
+        }
+        // A crowd may use up its passes unsettled, and a push in the last of them can leave a
+        // body inside a wall: the contacts with something immovable get one more pass, last
+        // (what that leaves between movable bodies waits for the next step, as any unsettled
+        // overlap).
+        if (!settled_all) {
+            join_new(/*grounded_only=*/true);
+            for (const PassContact& c : contacts_) {
+                if (immovable_in(c.a, c.b)) visit(c, true);
+            }
+        }
+    }
+
+private:
+    bool immovable_in(std::uint32_t a, std::uint32_t b) const {
+        return !(inverse_mass_[a] > 0.0f && inverse_mass_[b] > 0.0f);
+    }
+
     // A contact between shapes sa and sb (placed when B had moved `since` more than A) whose
     // overlap along n is `overlap` (m.depth for a hit, or minus a kept contact's gap).
-    const auto add = [&](std::uint32_t a, std::uint32_t b, const Shape& sa, const Shape& sb, const Manifold& m,
-                         float overlap, Vec2 since) {
+    void add(std::uint32_t a, std::uint32_t b, const Shape& sa, const Shape& sb, const Manifold& m, float overlap,
+             Vec2 since) {
         PassContact c{a, b, m.normal, overlap + dot(since, m.normal)};
-        std::tie(c.share_a, c.share_b) = push_shares(inverse_mass[a], inverse_mass[b]);
-        const auto [ia, ib] = shock_masses(inverse_mass[a], inverse_mass[b], level[a], level[b], true);
+        std::tie(c.share_a, c.share_b) = push_shares(inverse_mass_[a], inverse_mass_[b]);
+        const auto [ia, ib] = shock_masses(inverse_mass_[a], inverse_mass_[b], level_[a], level_[b], true);
         std::tie(c.shock_a, c.shock_b) = push_shares(ia, ib);
+        const auto points = [&](Vec2 gap, float reach, PassContact::Corner corner, const PointFeature& f) {
+            c.kind = PassKind::points;
+            c.offset = 0.0f;
+            c.gap = gap - since;
+            c.reach = reach;
+            c.corner = corner;
+            c.n_prev = f.n_prev;
+            c.n_next = f.n_next;
+        };
         if (std::holds_alternative<PlacedMask>(sa) || std::holds_alternative<PlacedMask>(sb)) {
             c.kind = PassKind::mask;
         } else if (const auto* cb = std::get_if<Circle>(&sb); cb != nullptr && m.hit) {
             if (const std::optional<PointFeature> pa = point_feature(sa, *cb, m, 1.0f)) {
-                const float ra = std::holds_alternative<Circle>(sa) ? std::get<Circle>(sa).radius : 0.0f;
-                c.kind = PassKind::points;
-                c.offset = 0.0f;
-                c.gap = (cb->center - pa->point) - since;
-                c.reach = ra + cb->radius;
-                c.corner = std::holds_alternative<Circle>(sa) ? PassContact::Corner::none : PassContact::Corner::of_a;
-                c.n_prev = pa->n_prev;
-                c.n_next = pa->n_next;
+                const auto* ca = std::get_if<Circle>(&sa);
+                points(cb->center - pa->point, (ca != nullptr ? ca->radius : 0.0f) + cb->radius,
+                       ca != nullptr ? PassContact::Corner::none : PassContact::Corner::of_a, *pa);
             }
         } else if (const auto* ca = std::get_if<Circle>(&sa); ca != nullptr && m.hit) {
             if (const std::optional<PointFeature> pb = point_feature(sb, *ca, m, -1.0f)) {
-                c.kind = PassKind::points;
-                c.offset = 0.0f;
-                c.gap = (pb->point - ca->center) - since;
-                c.reach = ca->radius;
-                c.corner = PassContact::Corner::of_b;
-                c.n_prev = pb->n_prev;
-                c.n_next = pb->n_next;
+                points(pb->point - ca->center, ca->radius, PassContact::Corner::of_b, *pb);
             }
         }
-        pcs.push_back(c);
-    };
-    // The narrowphase's contacts (hits, and kept contacts a gap apart: negative overlap) are
-    // the passes' contacts; corner-to-corner touches have no true normal and wait with the
-    // other candidate pairs (`apart`) until a push brings them into each other.
-    std::vector<std::uint8_t> apart(push_pairs.size(), 1);
-    std::vector<std::uint32_t> grounded;  // the apart pairs with an immovable body
-    for (std::size_t k = 0, f = 0; k < push_pairs.size(); ++k) {
-        const Pair& p = push_pairs[k];
-        while (f < found.size() && (found[f].pair.a < p.a || (found[f].pair.a == p.a && found[f].pair.b < p.b))) ++f;
-        if (f == found.size() || found[f].pair.a != p.a || found[f].pair.b != p.b || found[f].corner) {
-            if (!(inverse_mass[p.a] > 0.0f && inverse_mass[p.b] > 0.0f)) grounded.push_back(static_cast<std::uint32_t>(k));
-            continue;
-        }
-        const NarrowContact& c = found[f];
-        const float overlap = c.separation > 0.0f ? -c.separation : c.manifold.depth;
-        // (At the narrowphase's placements: friction may have moved the bodies since. A kept
-        // contact a gap apart is pushed along its normal: its points are not in touch.)
-        Manifold m = c.manifold;
-        m.hit = c.separation <= 0.0f;
-        add(p.a, p.b, placements[p.a].shape, placements[p.b].shape, m, overlap, {});
-        apart[k] = 0;
+        contacts_.push_back(c);
     }
-    std::vector<std::uint32_t> ground_up;
-    const auto order = [&] {
-        ground_up = ground_up_order(level, pcs.size(), [&](std::size_t k) { return std::pair{pcs[k].a, pcs[k].b}; });
-    };
-    order();
-    // Pushes can bring candidate pairs that were apart into each other: those with a body
-    // that moved and bounds that now touch are tested again (placed where they are now; the
-    // placements stay the narrowphase's), and the overlapping ones join the passes.
-    constexpr float kBoundsMargin = 1.0f / 64.0f;  // px: rounding of placement, up to |x| = 1e5
-    Shape join_a, join_b;  // the pair tested, placed where it is now (storage reused)
-    const auto join = [&](std::uint32_t k) {
-        if (!apart[k]) return false;
-        const Pair& p = push_pairs[k];
-        if (!(moved[p.a] | moved[p.b])) return false;
-        // (The bounds move by what the positions moved, rounding included: far from the origin
-        // that differs from the sum of the pushes, moved_by, by more than the margin allows.)
-        if (!touch_moved(pair_bodies[p.a].box, moves[p.a].position - positions[p.a], pair_bodies[p.b].box,
-                         moves[p.b].position - positions[p.b], kBoundsMargin)) {
+
+    void order() {
+        ground_up_ = ground_up_order(level_, contacts_.size(),
+                                     [&](std::size_t k) { return std::pair{contacts_[k].a, contacts_[k].b}; });
+    }
+
+    // Pushes can bring candidate pairs that were apart into each other: one with a body that
+    // moved and bounds that now touch is tested again (placed where it is now; the placements
+    // stay the narrowphase's), and joins the passes if it overlaps.
+    bool join(std::uint32_t k) {
+        if (!apart_[k]) return false;
+        const Pair& p = push_pairs_[k];
+        if (!(moved_[p.a] | moved_[p.b])) return false;
+        // The bounds move by what the positions moved, rounding included (far from the origin
+        // that differs from the sum of the pushes, moved_by, by more than the margin allows).
+        constexpr float kBoundsMargin = 1.0f / 64.0f;  // px: rounding of placement, up to |x| = 1e5
+        if (!touch_moved(w_.pair_bodies[p.a].box, moves_[p.a].position - w_.positions[p.a], w_.pair_bodies[p.b].box,
+                         moves_[p.b].position - w_.positions[p.b], kBoundsMargin)) {
             return false;
         }
-        place_into(p.a, moves[p.a].position, join_a);
-        place_into(p.b, moves[p.b].position, join_b);
-        const Manifold m = collide(join_a, join_b);
-        if (!m.hit || !(m.depth > settled)) return false;
-        add(p.a, p.b, join_a, join_b, m, m.depth, moves[p.b].moved_by - moves[p.a].moved_by);
-        apart[k] = 0;
+        w_.place_into(p.a, moves_[p.a].position, join_a_);
+        w_.place_into(p.b, moves_[p.b].position, join_b_);
+        const Manifold m = collide(join_a_, join_b_);
+        if (!m.hit || !(m.depth > settled_)) return false;
+        add(p.a, p.b, join_a_, join_b_, m, m.depth, moves_[p.b].moved_by - moves_[p.a].moved_by);
+        apart_[k] = 0;
         return true;
-    };
-    // Every apart pair, or only those with an immovable body (`grounded`).
-    const auto join_new = [&](bool grounded_only) {
+    }
+
+    // Every apart pair, or only those with an immovable body. Returns how many joined.
+    std::size_t join_new(bool grounded_only) {
         std::size_t joined = 0;
         if (grounded_only) {
-            for (const std::uint32_t k : grounded) joined += join(k) ? 1 : 0;
+            for (const std::uint32_t k : grounded_) joined += join(k) ? 1 : 0;
         } else {
-            for (std::uint32_t k = 0; k < push_pairs.size(); ++k) joined += join(k) ? 1 : 0;
+            for (std::uint32_t k = 0; k < push_pairs_.size(); ++k) joined += join(k) ? 1 : 0;
         }
         if (joined > 0) order();
         return joined;
-    };
+    }
+
     // One visit: the contact's overlap now, and if deeper than settled, the push along its
     // normal, split by the shares. Returns the overlap (0 when not pushed).
-    const auto visit = [&](const PassContact& c, bool shock) {
+    float visit(const PassContact& c, bool shock) {
         const float wa = shock ? c.shock_a : c.share_a;
         const float wb = shock ? c.shock_b : c.share_b;
         if (!(wa + wb > 0.0f)) return 0.0f;
         float depth = 0.0f;
         Vec2 normal = c.normal;
-        detail::Moving& ma = moves[c.a];
-        detail::Moving& mb = moves[c.b];
+        detail::Moving& ma = moves_[c.a];
+        detail::Moving& mb = moves_[c.b];
         if (c.kind == PassKind::along_normal) {
             depth = c.offset - dot(mb.moved_by - ma.moved_by, c.normal);
         } else if (c.kind == PassKind::points) {
@@ -813,12 +852,14 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
                 if (len > 0.0f && len < INFINITY) normal = {gap.x / len, gap.y / len};  // else the narrowphase's
             }
         } else {
-            const Manifold m = collide(placed_at(c.a, ma.position), placed_at(c.b, mb.position));
+            w_.place_into(c.a, ma.position, join_a_);
+            w_.place_into(c.b, mb.position, join_b_);
+            const Manifold m = collide(join_a_, join_b_);
             if (!m.hit) return 0.0f;
             depth = m.depth;
             normal = m.normal;
         }
-        if (!(depth > settled)) return 0.0f;
+        if (!(depth > settled_)) return 0.0f;
         const Vec2 mtd = depth * normal;  // moves B out of A
         Vec2 push_a = wa * mtd;
         Vec2 push_b = wb * mtd;
@@ -832,36 +873,33 @@ void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const
         mb.position += push_b;
         ma.moved_by -= push_a;
         mb.moved_by += push_b;
-        moved[c.a] |= static_cast<std::uint8_t>(wa > 0.0f);
-        moved[c.b] |= static_cast<std::uint8_t>(wb > 0.0f);
+        moved_[c.a] |= static_cast<std::uint8_t>(wa > 0.0f);
+        moved_[c.b] |= static_cast<std::uint8_t>(wb > 0.0f);
         return depth;
-    };
-    const int passes = std::max(desc.relaxation_passes, 1);
-    bool settled_all = false;
-    for (int pass = 0; pass < passes && !settled_all; ++pass) {
-        const bool shock = pass >= passes / 2;
-        // Whenever the passes settle every new overlap joins (and the passes go on if any
-        // did); before each shock pass those with something immovable, which the ground-up
-        // order takes first. (Joining every pair mid-way in a crowd that never settles cost
-        // a shape test for each of its many near misses, to find a few overlaps that the
-        // next step's narrowphase finds anyway.)
-        if (shock) join_new(/*grounded_only=*/true);
-        float deepest = 0.0f;
-        for (std::size_t r = 0; r < pcs.size(); ++r) {
-            const float depth = visit(pcs[shock ? ground_up[r] : r], shock);  // >= 0
-            deepest = depth > deepest ? depth : deepest;
-        }
-        settled_all = deepest <= settled && join_new(false) == 0;
     }
-    // A crowd may use up its passes unsettled, and a push in the last of them can leave a
-    // body inside a wall: the contacts with something immovable have the last word (what
-    // that leaves between movable bodies waits for the next step, as any unsettled overlap).
-    if (!settled_all) {
-        join_new(true);
-        for (const PassContact& c : pcs) {
-            if (!(inverse_mass[c.a] > 0.0f && inverse_mass[c.b] > 0.0f)) visit(c, true);
-        }
-    }
+
+    World::Impl& w_;
+    const std::vector<Pair>& push_pairs_;
+    const std::vector<float>& inverse_mass_;
+    const std::vector<int>& level_;
+    std::vector<detail::Moving>& moves_;
+    std::vector<std::uint8_t>& moved_;
+    const float settled_;
+    std::vector<PassContact> contacts_;
+    std::vector<std::uint32_t> ground_up_;  // contacts_'s ground-up order (shock passes)
+    std::vector<std::uint8_t> apart_;       // by push pair: not (yet) one of contacts_
+    std::vector<std::uint32_t> grounded_;   // the apart pairs with an immovable body
+    Shape join_a_, join_b_;  // a pair placed where it is now (storage reused)
+};
+
+}  // namespace
+
+void World::Impl::relax_positions(const std::vector<NarrowContact>& found, const std::vector<Pair>& push_pairs,
+                                  const std::vector<float>& inverse_mass, const std::vector<int>& level,
+                                  std::vector<detail::Moving>& moves, std::vector<std::uint8_t>& moved) {
+    PositionPasses passes(*this, push_pairs, inverse_mass, level, moves, moved);
+    passes.take(found);
+    passes.run(std::max(desc.relaxation_passes, 1));
     // The bodies that moved (friction or pushes) take their new positions, and their
     // proxies follow.
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
