@@ -51,6 +51,7 @@ struct BodyState {
     float friction = 0.0f;
     float restitution = 0.0f;
     bool still = false;         // a static body: contacts see it at rest
+    std::uint32_t stamp = 0;    // a velocity solve's clock when the velocity last changed
 };
 
 // What the candidate-pair loops (broadphase filter, narrowphase, resolve) read of a body

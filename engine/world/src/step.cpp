@@ -119,6 +119,12 @@ struct VelocityContact {
     std::array<Masses, 2> masses;
     float normal_impulse = 0.0f;   // accumulated, >= 0
     float tangent_impulse = 0.0f;  // accumulated, |.| <= friction * normal_impulse
+    // When the contact was last visited (solve_velocities' clock), and whether that visit
+    // changed nothing, in a plain (0) or a shock (1) pass (-1: it did, or none yet): with
+    // neither body's velocity changed since, a visit in the same kind of pass would compute
+    // the same nothing again.
+    std::uint32_t seen = 0;
+    std::int8_t quiet = -1;
 };
 
 constexpr int kUnreached = 1 << 30;
@@ -232,13 +238,16 @@ VelocityContact::Masses masses_of(float ima, float imb) {
     return {ima, imb, k > 0.0f ? fmin_inline(1.0f / k, FLT_MAX) : 0.0f};
 }
 
-void solve_velocity(BodyState* motion, VelocityContact& vc, bool shock) {
+void solve_velocity(BodyState* motion, VelocityContact& vc, bool shock, std::uint32_t& clock) {
     // (Read in place: a structured binding copied the three floats through the stack.)
     const VelocityContact::Masses& masses = vc.masses[shock ? 1 : 0];
     const float ima = masses.ima, imb = masses.imb, inv_k = masses.inv_k;
     if (!(inv_k > 0.0f)) return;
     BodyState& sa = motion[vc.a];
     BodyState& sb = motion[vc.b];
+    // Nothing changed since a visit that changed nothing: skipped (the same nothing).
+    if (vc.quiet == (shock ? 1 : 0) && sa.stamp < vc.seen && sb.stamp < vc.seen) return;
+    vc.seen = ++clock;
     const Vec2 n = vc.normal;
     const float vn = dot(sb.velocity - sa.velocity, n);
     const float total = max0(vc.normal_impulse + (vc.target - vn) * inv_k);
@@ -247,8 +256,17 @@ void solve_velocity(BodyState* motion, VelocityContact& vc, bool shock) {
     // Only a body the contact can move takes the impulse: an immovable one keeps its velocity
     // (zero, as contacts see a static body) even when a NaN or infinite velocity elsewhere
     // makes the impulse NaN, so that a floor does not pass one body's NaN on to the others.
-    if (ima > 0.0f) sa.velocity -= (ima * dn) * n;
-    if (imb > 0.0f) sb.velocity += (imb * dn) * n;
+    // A zero impulse changes no velocity (its stamp says when one last changed).
+    if (dn != 0.0f) {
+        if (ima > 0.0f) {
+            sa.velocity -= (ima * dn) * n;
+            sa.stamp = clock;
+        }
+        if (imb > 0.0f) {
+            sb.velocity += (imb * dn) * n;
+            sb.stamp = clock;
+        }
+    }
     // Friction along the tangent, bounded by the normal impulse (Coulomb).
     const Vec2 t = perp(n);
     const float vt = dot(sb.velocity - sa.velocity, t);
@@ -256,16 +274,21 @@ void solve_velocity(BodyState* motion, VelocityContact& vc, bool shock) {
     const float total_t = std::clamp(vc.tangent_impulse - vt * inv_k, -limit, limit);
     const float dt_impulse = total_t - vc.tangent_impulse;
     vc.tangent_impulse = total_t;
-    if (ima > 0.0f) {
-        const Vec2 dva = -(ima * dt_impulse) * t;
-        sa.velocity += dva;
-        sa.friction_dv += dva;
+    if (dt_impulse != 0.0f) {
+        if (ima > 0.0f) {
+            const Vec2 dva = -(ima * dt_impulse) * t;
+            sa.velocity += dva;
+            sa.friction_dv += dva;
+            sa.stamp = clock;
+        }
+        if (imb > 0.0f) {
+            const Vec2 dvb = (imb * dt_impulse) * t;
+            sb.velocity += dvb;
+            sb.friction_dv += dvb;
+            sb.stamp = clock;
+        }
     }
-    if (imb > 0.0f) {
-        const Vec2 dvb = (imb * dt_impulse) * t;
-        sb.velocity += dvb;
-        sb.friction_dv += dvb;
-    }
+    vc.quiet = dn == 0.0f && dt_impulse == 0.0f ? static_cast<std::int8_t>(shock ? 1 : 0) : std::int8_t{-1};
 }
 
 // `passes` passes in the given order; the last one goes ground up with shock propagation,
@@ -280,11 +303,14 @@ void solve_velocities(std::vector<BodyState>& motion, const std::vector<int>& le
     }
     passes = std::max(passes, 1);
     BodyState* const bodies = motion.data();
+    // The clock starts past every body's stamp (stamps are this solve's, reset here).
+    for (const VelocityContact& vc : vcs) bodies[vc.a].stamp = bodies[vc.b].stamp = 0;
+    std::uint32_t clock = 0;
     for (int pass = 0; pass < passes; ++pass) {
         if (pass == passes - 1 && passes > 1) {
-            for (const std::uint32_t k : ground_up) solve_velocity(bodies, vcs[k], true);
+            for (const std::uint32_t k : ground_up) solve_velocity(bodies, vcs[k], true, clock);
         } else {
-            for (VelocityContact& vc : vcs) solve_velocity(bodies, vc, false);
+            for (VelocityContact& vc : vcs) solve_velocity(bodies, vc, false, clock);
         }
     }
 }
