@@ -70,6 +70,7 @@ struct PairBody {
 struct Moving {
     Vec2 position;
     Vec2 moved_by;
+    std::uint32_t stamp = 0;  // the passes' clock when a push last moved it (0: not yet)
 };
 
 // A candidate pair; a.index < b.index. broadphase_pairs reads both bodies' packed records

@@ -629,6 +629,10 @@ struct PassContact {
     // points at a corner: the corner's faces' outward normals, turning from n_prev to n_next
     // through its region, and which body the corner is on (none: two circles, or a point).
     enum class Corner : std::uint8_t { none, of_a, of_b } corner = Corner::none;
+    // The last visit that measured the contact (the passes' clock), and whether it found it
+    // settled: with neither body moved since, a visit would find it settled again.
+    bool quiet = false;
+    std::uint32_t seen = 0;
     Vec2 n_prev, n_next;
 };
 
@@ -768,7 +772,7 @@ public:
         // overlap).
         if (!settled_all) {
             join_new(/*grounded_only=*/true);
-            for (const PassContact& c : contacts_) {
+            for (PassContact& c : contacts_) {
                 if (immovable_in(c.a, c.b)) visit(c, true);
             }
         }
@@ -854,14 +858,16 @@ private:
 
     // One visit: the contact's overlap now, and if deeper than settled, the push along its
     // normal, split by the shares. Returns the overlap (0 when not pushed).
-    float visit(const PassContact& c, bool shock) {
+    float visit(PassContact& c, bool shock) {
         const float wa = shock ? c.shock_a : c.share_a;
         const float wb = shock ? c.shock_b : c.share_b;
         if (!(wa + wb > 0.0f)) return 0.0f;
-        float depth = 0.0f;
-        Vec2 normal = c.normal;
         detail::Moving& ma = moves_[c.a];
         detail::Moving& mb = moves_[c.b];
+        if (c.quiet && ma.stamp < c.seen && mb.stamp < c.seen) return 0.0f;  // settled, and still
+        c.seen = ++clock_;
+        float depth = 0.0f;
+        Vec2 normal = c.normal;
         if (c.kind == PassKind::along_normal) {
             depth = c.offset - dot(mb.moved_by - ma.moved_by, c.normal);
         } else if (c.kind == PassKind::points) {
@@ -881,11 +887,11 @@ private:
             w_.place_into(c.a, ma.position, join_a_);
             w_.place_into(c.b, mb.position, join_b_);
             const Manifold m = collide(join_a_, join_b_);
-            if (!m.hit) return 0.0f;
-            depth = m.depth;
+            depth = m.hit ? m.depth : 0.0f;
             normal = m.normal;
         }
-        if (!(depth > settled_)) return 0.0f;
+        c.quiet = !(depth > settled_);
+        if (c.quiet) return 0.0f;
         const Vec2 mtd = depth * normal;  // moves B out of A
         Vec2 push_a = wa * mtd;
         Vec2 push_b = wb * mtd;
@@ -899,8 +905,15 @@ private:
         mb.position += push_b;
         ma.moved_by -= push_a;
         mb.moved_by += push_b;
-        moved_[c.a] |= static_cast<std::uint8_t>(wa > 0.0f);
-        moved_[c.b] |= static_cast<std::uint8_t>(wb > 0.0f);
+        // (A body whose share is 0 stays where it is: no stamp, no mark.)
+        if (wa > 0.0f) {
+            ma.stamp = clock_;
+            moved_[c.a] = 1;
+        }
+        if (wb > 0.0f) {
+            mb.stamp = clock_;
+            moved_[c.b] = 1;
+        }
         return depth;
     }
 
@@ -916,6 +929,7 @@ private:
     std::vector<std::uint8_t> apart_;       // by push pair: not (yet) one of contacts_
     std::vector<std::uint32_t> grounded_;   // the apart pairs with an immovable body
     Shape join_a_, join_b_;  // a pair placed where it is now (storage reused)
+    std::uint32_t clock_ = 0;  // counts visits that measure a contact (Moving::stamp, PassContact::seen)
 };
 
 }  // namespace
