@@ -11,11 +11,13 @@ constexpr float kFar = 1e12f;
 }  // namespace
 
 bool Broadphase::usable(const Aabb& tight) {
-    // |v| <= kFar is false for NaN and the infinities too; & rather than &&: one test, no
-    // branch per coordinate (every body's bounds are asked each step).
-    const auto ok = [](float v) { return std::fabs(v) <= kFar; };
-    return ok(tight.min.x) & ok(tight.min.y) & ok(tight.max.x) & ok(tight.max.y) & (tight.min.x <= tight.max.x) &
-           (tight.min.y <= tight.max.y);
+    // |v| <= kFar is false for NaN and the infinities too. The tests are combined as
+    // integers with & rather than &&: one test, no branch per coordinate (every body's
+    // bounds are asked each step).
+    const auto ok = [](float v) -> unsigned { return std::fabs(v) <= kFar; };
+    const auto ordered = [](float lo, float hi) -> unsigned { return lo <= hi; };
+    return (ok(tight.min.x) & ok(tight.min.y) & ok(tight.max.x) & ok(tight.max.y) & ordered(tight.min.x, tight.max.x) &
+            ordered(tight.min.y, tight.max.y)) != 0;
 }
 
 b2AABB Broadphase::to_b2(const Aabb& box) {
