@@ -304,9 +304,20 @@ void solve_velocities(std::vector<BodyState>& motion, const std::vector<int>& le
     passes = std::max(passes, 1);
     BodyState* const bodies = motion.data();
     // The clock starts past every body's stamp (stamps are this solve's, reset here).
-    for (const VelocityContact& vc : vcs) bodies[vc.a].stamp = bodies[vc.b].stamp = 0;
     std::uint32_t clock = 0;
+    const auto restart_clock = [&] {
+        for (VelocityContact& vc : vcs) {
+            bodies[vc.a].stamp = bodies[vc.b].stamp = 0;
+            vc.quiet = -1;  // (already so at the start)
+        }
+        clock = 0;
+    };
+    restart_clock();
     for (int pass = 0; pass < passes; ++pass) {
+        // A pass ticks the clock at most once a contact. Before it could wrap (over 4 billion
+        // visits: a huge velocity_passes), every contact forgets that it was quiet: skipping
+        // only saves work, so the results are the same.
+        if (clock > UINT32_MAX - vcs.size()) restart_clock();
         if (pass == passes - 1 && passes > 1) {
             for (const std::uint32_t k : ground_up) solve_velocity(bodies, vcs[k], true, clock);
         } else {
@@ -759,6 +770,7 @@ public:
             // settles cost a shape test for each of its many near misses, to find a few
             // overlaps that the next step's narrowphase finds anyway.)
             if (shock) join_new(/*grounded_only=*/true);
+            keep_clock();
             float deepest = 0.0f;
             for (std::size_t r = 0; r < contacts_.size(); ++r) {
                 const float depth = visit(contacts_[shock ? ground_up_[r] : r], shock);  // >= 0
@@ -772,6 +784,7 @@ public:
         // overlap).
         if (!settled_all) {
             join_new(/*grounded_only=*/true);
+            keep_clock();
             for (PassContact& c : contacts_) {
                 if (immovable_in(c.a, c.b)) visit(c, true);
             }
@@ -779,6 +792,18 @@ public:
     }
 
 private:
+    // A pass ticks the clock at most once a contact. Before it could wrap (over 4 billion
+    // visits: a huge relaxation_passes), every contact forgets that it was settled: skipping
+    // only saves work, so the results are the same.
+    void keep_clock() {
+        if (clock_ <= UINT32_MAX - contacts_.size()) return;
+        for (PassContact& c : contacts_) {
+            c.quiet = false;
+            moves_[c.a].stamp = moves_[c.b].stamp = 0;
+        }
+        clock_ = 0;
+    }
+
     bool immovable_in(std::uint32_t a, std::uint32_t b) const {
         return !(inverse_mass_[a] > 0.0f && inverse_mass_[b] > 0.0f);
     }
@@ -901,16 +926,17 @@ private:
             push_a = whole(push_a);
             push_b = whole(mtd) - push_a;
         }
-        ma.position -= push_a;
-        mb.position += push_b;
-        ma.moved_by -= push_a;
-        mb.moved_by += push_b;
-        // (A body whose share is 0 stays where it is: no stamp, no mark.)
+        // A body whose share is 0 stays where it is, to the bit (not moved by 0 * a NaN push,
+        // nor from -0 to +0): no stamp, no mark.
         if (wa > 0.0f) {
+            ma.position -= push_a;
+            ma.moved_by -= push_a;
             ma.stamp = clock_;
             moved_[c.a] = 1;
         }
         if (wb > 0.0f) {
+            mb.position += push_b;
+            mb.moved_by += push_b;
             mb.stamp = clock_;
             moved_[c.b] = 1;
         }
