@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "arena.h"
+#include "jostle/render/contact_sheet.h"
 #include "jostle/render/png_io.h"
 #include "jostle/replay/replay.h"
 #include "play.h"
@@ -298,6 +299,24 @@ TEST_F(Play, AnimAndSheetAreValidPngs) {
     const Image sheet = read_png(path("sheet.png"));
     EXPECT_GE(sheet.width, 2 * 64);  // four thumbnails at 64 px, in a grid
     EXPECT_GT(sheet.height, 2 * 48);
+}
+
+// play draws each sheet frame into the sheet as it renders it instead of keeping the frames:
+// the sheet is still the contact sheet of the frames it wrote as files.
+TEST_F(Play, TheSheetIsTheContactSheetOfTheFrames) {
+    const std::string s = scenario("s.scn", kDrive);
+    const std::string out = path("frames");
+    const RunResult r = play({s, "--out", out, "--sheet", path("sheet.png"), "--frames", "0-9", "--every", "3", "--size", "64x48"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::vector<Image> images;
+    std::vector<SheetFrame> frames;
+    for (const int tick : {0, 3, 6, 9}) images.push_back(read_png(out + "/frame_00000" + std::to_string(tick) + ".png"));
+    for (std::size_t i = 0; i < images.size(); ++i) frames.push_back({static_cast<std::int64_t>(3 * i), &images[i]});
+    const Image expected = contact_sheet(frames);
+    const Image sheet = read_png(path("sheet.png"));
+    EXPECT_EQ(sheet.width, expected.width);
+    EXPECT_EQ(sheet.height, expected.height);
+    EXPECT_TRUE(sheet.rgba == expected.rgba);
 }
 
 TEST_F(Play, AnOutputThatCannotBeWrittenIsBadInput) {

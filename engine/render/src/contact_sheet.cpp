@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "font.h"
+#include "jostle/core/error.h"
 
 namespace jostle {
 
@@ -43,49 +45,83 @@ bool usable(const Image* im) {
 }  // namespace
 
 Image contact_sheet(std::span<const SheetFrame> frames, const SheetDesc& desc) {
-    if (frames.empty()) return {};
-    const Image* first = nullptr;
+    ContactSheetBuilder builder(static_cast<int>(frames.size()), desc);
     for (const SheetFrame& f : frames) {
-        if (usable(f.image)) { first = f.image; break; }
+        if (f.image != nullptr) {
+            builder.add(f.frame, *f.image);
+        } else {
+            builder.add(f.frame, Image{});
+        }
     }
-    const int n = static_cast<int>(frames.size());
-    const int columns = desc.columns > 0 ? std::min(desc.columns, n) : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
-    const int rows = (n + columns - 1) / columns;
+    return builder.finish();
+}
+
+ContactSheetBuilder::ContactSheetBuilder(int count, const SheetDesc& desc) : count_(std::max(count, 0)), desc_(desc) {}
+
+// The grid and the cells' size, from the first whole frame (or 64 x 48 when there is none):
+// the background, then the labels of the frames added before it.
+void ContactSheetBuilder::start(const Image* first) {
+    started_ = true;
+    const int n = count_;
+    columns_ = desc_.columns > 0 ? std::min(desc_.columns, n) : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+    const int rows = (n + columns_ - 1) / columns_;
     const int base_w = first ? first->width : 64;
     const int base_h = first ? first->height : 48;
-    const int thumb_w = std::max(1, desc.thumb_width > 0 ? desc.thumb_width : std::min(base_w, 320));
-    const int thumb_h = std::max(1, static_cast<int>(std::lround(static_cast<double>(thumb_w) * base_h / base_w)));
-    const int cell_w = thumb_w + kGap;
-    const int cell_h = thumb_h + kLabelHeight + kGap;
+    thumb_w_ = std::max(1, desc_.thumb_width > 0 ? desc_.thumb_width : std::min(base_w, 320));
+    thumb_h_ = std::max(1, static_cast<int>(std::lround(static_cast<double>(thumb_w_) * base_h / base_w)));
+    const int cell_w = thumb_w_ + kGap;
+    const int cell_h = thumb_h_ + kLabelHeight + kGap;
 
-    Image sheet{kGap + columns * cell_w, kGap + rows * cell_h, {}};
-    sheet.rgba.resize(static_cast<std::size_t>(sheet.width) * static_cast<std::size_t>(sheet.height) * 4u);
-    for (int y = 0; y < sheet.height; ++y) {
-        for (int x = 0; x < sheet.width; ++x) put(sheet, x, y, desc.background);
+    sheet_ = Image{kGap + columns_ * cell_w, kGap + rows * cell_h, {}};
+    sheet_.rgba.resize(static_cast<std::size_t>(sheet_.width) * static_cast<std::size_t>(sheet_.height) * 4u);
+    for (int y = 0; y < sheet_.height; ++y) {
+        for (int x = 0; x < sheet_.width; ++x) put(sheet_, x, y, desc_.background);
     }
-    for (int i = 0; i < n; ++i) {
-        const int cx = kGap + (i % columns) * cell_w;
-        const int cy = kGap + (i / columns) * cell_h;
-        const Image* im = frames[static_cast<std::size_t>(i)].image;
-        if (usable(im)) {
-            // Fit inside the cell keeping the aspect ratio; nearest pixel keeps edges crisp.
-            const double scale = std::min(static_cast<double>(thumb_w) / im->width, static_cast<double>(thumb_h) / im->height);
-            const int w = std::max(1, static_cast<int>(std::lround(im->width * scale)));
-            const int h = std::max(1, static_cast<int>(std::lround(im->height * scale)));
-            const int ox = cx + (thumb_w - w) / 2;
-            const int oy = cy + (thumb_h - h) / 2;
-            for (int y = 0; y < h; ++y) {
-                const int sy = std::min(im->height - 1, static_cast<int>((static_cast<std::int64_t>(y) * im->height) / h));
-                for (int x = 0; x < w; ++x) {
-                    const int sx = std::min(im->width - 1, static_cast<int>((static_cast<std::int64_t>(x) * im->width) / w));
-                    const std::uint8_t* p = im->rgba.data() + (static_cast<std::size_t>(sy) * static_cast<std::size_t>(im->width) + static_cast<std::size_t>(sx)) * 4u;
-                    put(sheet, ox + x, oy + y, {p[0], p[1], p[2], p[3]});
-                }
+    for (std::size_t i = 0; i < waiting_.size(); ++i) draw(static_cast<int>(i), waiting_[i], nullptr);
+    waiting_.clear();
+}
+
+void ContactSheetBuilder::draw(int cell, std::int64_t frame, const Image* im) {
+    const int cell_w = thumb_w_ + kGap;
+    const int cell_h = thumb_h_ + kLabelHeight + kGap;
+    const int cx = kGap + (cell % columns_) * cell_w;
+    const int cy = kGap + (cell / columns_) * cell_h;
+    if (usable(im)) {
+        // Fit inside the cell keeping the aspect ratio; nearest pixel keeps edges crisp.
+        const double scale = std::min(static_cast<double>(thumb_w_) / im->width, static_cast<double>(thumb_h_) / im->height);
+        const int w = std::max(1, static_cast<int>(std::lround(im->width * scale)));
+        const int h = std::max(1, static_cast<int>(std::lround(im->height * scale)));
+        const int ox = cx + (thumb_w_ - w) / 2;
+        const int oy = cy + (thumb_h_ - h) / 2;
+        for (int y = 0; y < h; ++y) {
+            const int sy = std::min(im->height - 1, static_cast<int>((static_cast<std::int64_t>(y) * im->height) / h));
+            for (int x = 0; x < w; ++x) {
+                const int sx = std::min(im->width - 1, static_cast<int>((static_cast<std::int64_t>(x) * im->width) / w));
+                const std::uint8_t* p = im->rgba.data() + (static_cast<std::size_t>(sy) * static_cast<std::size_t>(im->width) + static_cast<std::size_t>(sx)) * 4u;
+                put(sheet_, ox + x, oy + y, {p[0], p[1], p[2], p[3]});
             }
         }
-        text(sheet, cx, cy + thumb_h + 2, "frame " + std::to_string(frames[static_cast<std::size_t>(i)].frame), desc.label);
     }
-    return sheet;
+    text(sheet_, cx, cy + thumb_h_ + 2, "frame " + std::to_string(frame), desc_.label);
+}
+
+void ContactSheetBuilder::add(std::int64_t frame, const Image& image) {
+    JOSTLE_ASSERT(added_ < count_, "ContactSheetBuilder: more frames added than the sheet was made for");
+    const int cell = added_++;
+    if (!started_) {
+        if (!usable(&image)) {
+            waiting_.push_back(frame);  // its label waits for the cell size
+            return;
+        }
+        start(&image);
+    }
+    draw(cell, frame, &image);
+}
+
+Image ContactSheetBuilder::finish() {
+    if (count_ == 0) return {};
+    if (!started_) start(nullptr);
+    return std::move(sheet_);
 }
 
 }  // namespace jostle

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
@@ -141,7 +142,10 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
                 options.anim_path, AnimationDesc{.delay_num = static_cast<int>(every), .delay_den = scenario.tick_rate});
         }
     }
-    std::vector<std::pair<std::int64_t, Image>> sheet_images;
+    // Each sheet frame is drawn into the sheet when rendered, not kept (64 frames at full size
+    // were most of a play run's memory).
+    std::optional<ContactSheetBuilder> sheet_builder;
+    if (!sheet.empty()) sheet_builder.emplace(static_cast<int>(sheet.size()));
     std::size_t next_sheet = 0;
     std::size_t next_expectation = 0;
     std::size_t next_screenshot = 0;
@@ -174,7 +178,7 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
             ++result.frames_rendered;
             if (to_animation) animation->add(image);
             if (to_sheet) {
-                sheet_images.emplace_back(t, image);
+                sheet_builder->add(t, image);
                 ++next_sheet;
             }
             if (to_screenshot) result.screenshots.emplace_back(t, image);
@@ -193,10 +197,8 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
             result.files_written.push_back(options.anim_path);
         }
     }
-    if (!sheet_images.empty()) {
-        std::vector<SheetFrame> frames;
-        for (const auto& [tick, image] : sheet_images) frames.push_back(SheetFrame{tick, &image});
-        write_png_atomic(options.sheet_path, contact_sheet(frames));
+    if (next_sheet > 0) {
+        write_png_atomic(options.sheet_path, sheet_builder->finish());
         result.files_written.push_back(options.sheet_path);
     }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
