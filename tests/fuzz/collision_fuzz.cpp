@@ -206,6 +206,25 @@ float magnitude(const Shape& s) {
 // a float at the coordinates' magnitude (1/128 px at 1e5), which no computation in float avoids.
 double tolerance(double size, double mag) { return 2e-4 * size + 16.0 * FLT_EPSILON * mag + 1e-6; }
 
+// LIMITS: a half-plane test's rounding (about a float of the coordinates' magnitude) moves a
+// cast's or sweep's answer near a polygon corner of interior angle theta by up to that much
+// / sin theta along the corner: at a sliver's sharp tip (theta ~ 1e-6 rad) float cannot place
+// the tip closer than pixels. The oracle's slack for it (0 for corners of 90 degrees or more,
+// which the rounding term of tolerance() already covers).
+double corner_slack(const Shape& s, double mag) {
+    const auto* p = std::get_if<Polygon>(&s);
+    if (!p) return 0.0;
+    const int n = p->count();
+    double sharpest = 1.0;
+    for (int i = 0; i < n; ++i) {
+        const D2 e0 = d2(p->points()[static_cast<std::size_t>((i + 1) % n)]) - d2(p->points()[static_cast<std::size_t>(i)]);
+        const D2 e1 = d2(p->points()[static_cast<std::size_t>((i + 2) % n)]) - d2(p->points()[static_cast<std::size_t>((i + 1) % n)]);
+        const double sine = std::fabs(test::dcross(e0, e1)) / (test::dlen(e0) * test::dlen(e1));  // of the turn, = of the corner
+        if (sine < sharpest) sharpest = sine;
+    }
+    return sharpest >= 1.0 ? 0.0 : 16.0 * FLT_EPSILON * mag / std::max(sharpest, 1e-30);
+}
+
 // Does the oracle have anything to say? Two shapes without area or length on any axis (points)
 // give it no axis.
 bool oracle_applies(const Shape& a, const Shape& b) {
@@ -272,7 +291,8 @@ void cast_properties(Vec2 from, Vec2 to, const Shape& b) {
     check_contact(h, what);
     if (h.hit && (!finite(from) || !finite(to) || !all_finite(b))) fuzz_fail(what + ": non-finite input hit");
     if (!in_limits(b) || std::holds_alternative<Segment>(b) || !in_limits(Segment{from, to})) return;
-    const double tol = tolerance(test::shape_size(b) + length(to - from), std::max({magnitude(b), magnitude(Segment{from, to})}));
+    const double mag = std::max({magnitude(b), magnitude(Segment{from, to})});
+    const double tol = tolerance(test::shape_size(b) + length(to - from), mag) + corner_slack(b, mag);
     constexpr int kSamples = 64;
     for (int k = 0; k <= kSamples; ++k) {
         const double tau = static_cast<double>(k) / kSamples;
@@ -294,8 +314,8 @@ void sweep_properties(const Circle& a, Vec2 va, const Shape& b, Vec2 vb) {
     const Vec2 rel = va - vb;
     if (!in_limits(Segment{a.center, a.center + rel})) return;
     if (a.radius == 0.0f && std::holds_alternative<Segment>(b)) return;  // a point against a line: measure zero
-    const double tol = tolerance(std::max(test::shape_size(b), 2.0f * a.radius) + length(rel),
-                                 std::max({magnitude(a), magnitude(b), magnitude(Segment{va, vb})}));
+    const double mag = std::max({magnitude(a), magnitude(b), magnitude(Segment{va, vb})});
+    const double tol = tolerance(std::max(test::shape_size(b), 2.0f * a.radius) + length(rel), mag) + corner_slack(b, mag);
     auto gap_at = [&](double tau) {
         const D2 c = d2(a.center) + tau * d2(rel);
         return test::signed_distance(b, c) - a.radius;
