@@ -32,6 +32,8 @@ Manifold hit(float depth, Vec2 n) {
     return {true, depth > 0.0f ? depth : 0.0f, {n.x + 0.0f, n.y + 0.0f}};
 }
 
+constexpr float kLeastNormal = 0x1p-126f;  // FLT_MIN: below it a square lost bits
+
 Manifold scalar_circle_circle(const Circle& a, const Circle& b) {
     if (!valid_circle(a) || !valid_circle(b)) return {};
     const Vec2 d = b.center - a.center;
@@ -39,7 +41,11 @@ Manifold scalar_circle_circle(const Circle& a, const Circle& b) {
     const float r = a.radius + b.radius;
     if (!(dist2 <= r * r) || dist2 == kInf) return {};
     const float len = std::sqrt(dist2);
-    return hit(r - len, len > 0.0f ? Vec2{d.x / len, d.y / len} : Vec2{1.0f, 0.0f});
+    // A denormal dist2's root lost bits: the direction rescaled.
+    const Vec2 u = dist2 >= kLeastNormal ? Vec2{d.x / len, d.y / len}
+                   : len > 0.0f          ? detail::normalize_rescaled(d, Vec2{1.0f, 0.0f})
+                                         : Vec2{1.0f, 0.0f};
+    return hit(r - len, u);
 }
 
 Manifold scalar_polygon_circle(const Polygon& a, const Circle& b) {
@@ -75,7 +81,9 @@ Manifold scalar_polygon_circle(const Polygon& a, const Circle& b) {
     const Vec2 d = c - P[v];
     const Vec2 n_prev = N[(v + n - 1) % n], n_next = N[v];
     const float len = std::sqrt(dist2);
-    Vec2 u = len > 0.0f && len < kInf ? Vec2{d.x / len, d.y / len} : N[face];
+    Vec2 u = dist2 >= kLeastNormal && len < kInf ? Vec2{d.x / len, d.y / len}
+             : len > 0.0f && dist2 < kLeastNormal  ? detail::normalize_rescaled(d, N[face])
+                                                   : N[face];
     if (cross(n_prev, u) < 0.0f || cross(u, n_next) < 0.0f)
         u = dot(u, n_prev) >= dot(u, n_next) ? n_prev : n_next;
     return hit(b.radius - len, u);
@@ -91,7 +99,8 @@ Manifold scalar_box_circle(Vec2 lo, Vec2 hi, Vec2 c, float r) {
     if (dist2 > 0.0f) {
         if (!(dist2 <= r * r)) return {};
         const float dist = std::sqrt(dist2);
-        return hit(r - dist, Vec2{d.x / dist, d.y / dist});
+        const Vec2 u{d.x / dist, d.y / dist};
+        return hit(r - dist, dist2 < kLeastNormal ? detail::normalize_rescaled(d, u) : u);
     }
     float depth = c.x - lo.x;
     Vec2 normal{-1.0f, 0.0f};

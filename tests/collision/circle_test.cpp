@@ -340,5 +340,37 @@ TEST(CircleLimits, RadiusWhoseSquareOverflowsIsNoShape) {
     EXPECT_TRUE(collide(Shape{Circle{{0, 0}, 1e19f}}, Shape{box}).hit);
 }
 
+TEST(CircleLimits, ADenormalSquaredDistanceStillGivesAUnitNormal) {
+    // Found by the collision fuzz target: a circle 5.6e-23 px from a box's face (dist^2 a
+    // denormal, whose square root is a few percent off) gave the normal (0, -1.05). Each
+    // circle query that divides by that root rescales instead: the exact direction.
+    const Aabb box{{608, -5.5638883e-23f}, {1328, -5.563882e-23f}};
+    const Manifold m = collide(Shape{Circle{{720, 6.4e-29f}, 80}}, Shape{box});
+    ASSERT_TRUE(m.hit);
+    EXPECT_EQ(m.normal, (Vec2{0, -1}));  // the box pushed down, out of the circle
+    EXPECT_NEAR(m.depth, 80.0f, 1e-4f);
+    // The same offsets from a circle, a polygon's vertex and a turned box's corner (d = (3, 4)
+    // times 1e-23: the direction (0.6, 0.8)).
+    const Vec2 tiny{3e-23f, 4e-23f};
+    const Manifold cc = collide(Circle{{0, 0}, 1}, Circle{tiny, 1});
+    ASSERT_TRUE(cc.hit);
+    EXPECT_TRUE(test::is_unit(cc.normal));
+    EXPECT_NEAR(cc.normal.x, 0.6f, 1e-6f);
+    EXPECT_NEAR(cc.normal.y, 0.8f, 1e-6f);
+    const Polygon tri = *make_polygon(std::vector<Vec2>{{0, 0}, {-10, -1}, {-1, -10}}, nullptr);
+    const Manifold pc = collide(tri, Circle{tiny, 1});  // beyond the vertex at the origin, in its region
+    ASSERT_TRUE(pc.hit);
+    EXPECT_TRUE(test::is_unit(pc.normal));
+    EXPECT_NEAR(pc.normal.x, 0.6f, 1e-6f);
+    EXPECT_NEAR(pc.normal.y, 0.8f, 1e-6f);
+    const Manifold bc = collide(Aabb{{-2, -2}, {0, 0}}, Circle{tiny, 1});  // beyond the corner
+    ASSERT_TRUE(bc.hit);
+    EXPECT_NEAR(bc.normal.x, 0.6f, 1e-6f);
+    EXPECT_NEAR(bc.normal.y, 0.8f, 1e-6f);
+    const Manifold oc = collide(Obb{{-1, -1}, {1, 1}, 0.0f}, Circle{tiny, 1});
+    ASSERT_TRUE(oc.hit);
+    EXPECT_TRUE(test::is_unit(oc.normal));
+}
+
 }  // namespace
 }  // namespace jostle

@@ -31,7 +31,14 @@ namespace {
     using detail::Float4;
     const Float4 len = detail::sqrt_nonneg(Float4{dist2, dist2, dist2, dist2});
     Float4 n = {1.0f, 0.0f, 1.0f, 0.0f};
-    if (len[0] > 0.0f) n = detail::plain_zeros(Float4{dx, dy, dx, dy} / len);
+    if (dist2 >= 0x1p-126f) {
+        n = detail::plain_zeros(Float4{dx, dy, dx, dy} / len);
+    } else if (dist2 > 0.0f) [[unlikely]] {
+        // A denormal dist2 lost bits (its root is off by up to a few percent): the direction
+        // rescaled (fuzz: a normal 1.05 long).
+        const Vec2 u = detail::normalize_rescaled(Vec2{dx, dy}, Vec2{1.0f, 0.0f});
+        n = detail::plain_zeros(Float4{u.x, u.y, u.x, u.y});
+    }
     // hit_with without its finiteness test, which cannot fail here: r is finite (valid
     // radii), so are dist2 (tested), d (d.x^2 <= dist2) and len, and |d.x| / len is at most
     // about 1 (dist2 >= fl(d.x^2); a dist2 rounded to 0 takes the {1, 0} branch).
@@ -259,9 +266,12 @@ template <class Nearest>
     const Vec2 n_next = a.normals()[vertex];
     const float len = detail::sqrt_nonneg(dist2);
     Float4 n4 = face_normal;
-    if (len > 0.0f && len < INFINITY) {
+    if (dist2 >= 0x1p-126f && len < INFINITY) {
         const Float4 q = d / Float4{len, len, len, len};
         n4 = Float4{q[0], q[1], 0.0f, 0.0f};
+    } else if (dist2 > 0.0f && dist2 < 0x1p-126f) [[unlikely]] {  // denormal: the root lost bits, rescale
+        const Vec2 u = detail::normalize_rescaled(Vec2{d[0], d[1]}, Vec2{face_normal[0], face_normal[1]});
+        n4 = Float4{u.x, u.y, 0.0f, 0.0f};
     }
     const Vec2 n{n4[0], n4[1]};
     if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f)
@@ -432,6 +442,9 @@ inline bool box_circle_reach(Float4 lo, Float4 hi, Float4 c, float r, float& dep
         const Float4 n = d / dist;
         depth = r - dist[0];
         normal = {n[0], n[1]};
+        // A denormal dist2 lost bits (its root is off by up to a few percent): the direction
+        // rescaled (fuzz: a normal 1.05 long).
+        if (dist2 < 0x1p-126f) [[unlikely]] normal = detail::normalize_rescaled(Vec2{d[0], d[1]}, normal);
         return true;
     }
     // Inside: out through the nearest face, the first of least depth in the order -x, +x, -y,
