@@ -318,5 +318,27 @@ TEST(SweepObb, PointSizedBoxIsNotTunnelledThrough) {
     }
 }
 
+TEST(SweepObb, AnEndFaceShorterThanItsRoundingDoesNotStopABallFarAway) {
+    // Found by the collision fuzz target (regressions/collision/sweep_circle_past_rounding_thin_box_end.bin):
+    // a box 402 px long and 1.3e-5 px thick, turned, its corners near x = 160 (where a float
+    // step is 1.5e-5): an end face's direction was rounding, its window test passed, and a ball
+    // of radius 1008 passing 69 px beyond the box's end was stopped there. The end faces are
+    // left to their corners: the ball misses, as it misses a segment in the box's place.
+    const Circle ball{{-1296, 1008}, 1008};
+    const Vec2 v{96, -1520};
+    const Obb box{{6.4e-06f, 0}, {201.06194f, 6.4e-06f}, 2.5f};
+    const Vec2 u = rotate(box.rotation(), Vec2{box.half.x, 0.0f});
+    EXPECT_TRUE(is_miss(sweep(ball, v, Segment{box.center - u, box.center + u})));
+    EXPECT_TRUE(is_miss(sweep(ball, v, box)));
+    EXPECT_TRUE(is_miss(sweep(ball, v, to_polygon(box))));
+    // Moved 100 px closer (now passing within 1008 of the end), it hits at the end's corner.
+    const Circle closer{ball.center + Vec2{100, 0}, ball.radius};
+    const SweepHit seg = sweep(closer, v, Segment{box.center - u, box.center + u});
+    const SweepHit hit = sweep(closer, v, box);
+    ASSERT_TRUE(seg.hit);
+    ASSERT_TRUE(hit.hit);
+    EXPECT_NEAR(hit.t, seg.t, 1e-4f);
+}
+
 }  // namespace
 }  // namespace jostle

@@ -122,6 +122,12 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
         const float ee = dot(e, e);
         const float closing = -dot(n, v);
         if (!(ee > 0.0f) || !(closing > 0.0f)) continue;  // a zero-length face is its vertex
+        // So is a face shorter than the rounding of its ends' coordinates (a box 1e-5 px thick
+        // at x = 160, fuzz): e's direction is then rounding, not the face's, and its window
+        // test could pass 70 px away. Its vertices' circles cover it to within that rounding.
+        const auto extent = [](Vec2 p) { return std::fmax(std::fabs(p.x), std::fabs(p.y)); };
+        const float rounding = 64.0f * FLT_EPSILON * (extent(points[i]) + extent(points[(i + 1) % count]));
+        if (!(ee > rounding * rounding)) continue;
         const Vec2 f = from - points[i];
         const float gap = dot(n, f) - r;  // from the face's line pushed out by r
         // A start behind that line by more than rounding is not an entry through this face: it
