@@ -84,8 +84,10 @@ Manifold scalar_polygon_circle(const Polygon& a, const Circle& b) {
     Vec2 u = dist2 >= kLeastNormal && len < kInf ? Vec2{d.x / len, d.y / len}
              : len > 0.0f && dist2 < kLeastNormal  ? detail::normalize_rescaled(d, N[face])
                                                    : N[face];
-    if (cross(n_prev, u) < 0.0f || cross(u, n_next) < 0.0f)
-        u = dot(u, n_prev) >= dot(u, n_next) ? n_prev : n_next;
+    if (cross(n_prev, u) < 0.0f || cross(u, n_next) < 0.0f) {
+        const Vec2 nearer = dot(u, n_prev) >= dot(u, n_next) ? n_prev : n_next;
+        u = dot(nearer, u) > 0.0f ? nearer : N[face];  // a far vertex won a rounding tie
+    }
     return hit(b.radius - len, u);
 }
 

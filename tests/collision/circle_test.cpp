@@ -340,6 +340,28 @@ TEST(CircleLimits, RadiusWhoseSquareOverflowsIsNoShape) {
     EXPECT_TRUE(collide(Shape{Circle{{0, 0}, 1e19f}}, Shape{box}).hit);
 }
 
+TEST(CircleLimits, AFarVertexOfASliverWinningARoundingTieDoesNotTurnTheNormal) {
+    // Found by the collision fuzz target: a polygon 0.012 px wide and 2e-7 px thick, a circle
+    // of radius 10 centred 2 px above it. The squared distances to its vertices round to the
+    // same float, the search named a bottom vertex, and the normal came from that vertex's
+    // faces, looking away from the circle: the MTD pushed the wrong way (penetration 4 after).
+    const std::vector<Vec2> pts = {{-0.004002967f, 2.219268e-08f}, {-0.0006868296f, 5.826877e-10f},
+                                   {0.002847403f, 1.05369935e-08f}, {0.005477637f, 4.8895163e-08f},
+                                   {0.0063687917f, 1.0347878e-07f}, {0.005237931f, 1.569579e-07f},
+                                   {0.0024440975f, 1.9235327e-07f}, {-0.0011256904f, 1.9842716e-07f},
+                                   {-0.004338046f, 1.732511e-07f}, {-0.006173071f, 1.2481834e-07f},
+                                   {-0.006048158f, 6.850591e-08f}};
+    for (int rot = 0; rot < static_cast<int>(pts.size()); ++rot) {  // every grouping of the faces
+        std::vector<Vec2> q(pts.begin() + rot, pts.end());
+        q.insert(q.end(), pts.begin(), pts.begin() + rot);
+        const Polygon sliver = *make_polygon(q, nullptr);
+        const Manifold m = collide(sliver, Circle{{1.1754944e-38f, 2}, 10});
+        ASSERT_TRUE(m.hit) << rot;
+        EXPECT_NEAR(m.depth, 8.0f, 1e-5f) << rot;
+        EXPECT_GT(m.normal.y, 0.99f) << rot << ": the circle is pushed up, away from the sliver";
+    }
+}
+
 TEST(CircleLimits, ADenormalSquaredDistanceStillGivesAUnitNormal) {
     // Found by the collision fuzz target: a circle 5.6e-23 px from a box's face (dist^2 a
     // denormal, whose square root is a few percent off) gave the normal (0, -1.05). Each

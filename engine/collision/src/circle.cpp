@@ -274,9 +274,14 @@ template <class Nearest>
         n4 = Float4{u.x, u.y, 0.0f, 0.0f};
     }
     const Vec2 n{n4[0], n4[1]};
-    if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f)
-        n4 = lanes_xy(dot(n, n_prev) >= dot(n, n_next) ? a.normals()[detail::prev_index(vertex, a.count())]
-                                                        : a.normals()[vertex]);
+    if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) {
+        const Vec2 nearer = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
+        // A vertex on the far side of a sliver can win the nearest-vertex search by rounding
+        // (fuzz: a polygon 2e-7 px thick 2 px from the centre, where squared distances round
+        // to the same float): its faces look away from the centre. The farthest face, the
+        // one the centre is outside of, gives the direction then.
+        n4 = dot(nearer, n) > 0.0f ? lanes_xy(nearer) : face_normal;
+    }
     return polygon_circle_hit(b, b.radius - len, n4);
 }
 
