@@ -46,13 +46,8 @@ bool usable(const Image* im) {
 
 Image contact_sheet(std::span<const SheetFrame> frames, const SheetDesc& desc) {
     ContactSheetBuilder builder(static_cast<int>(frames.size()), desc);
-    for (const SheetFrame& f : frames) {
-        if (f.image != nullptr) {
-            builder.add(f.frame, *f.image);
-        } else {
-            builder.add(f.frame, Image{});
-        }
-    }
+    const Image none;
+    for (const SheetFrame& f : frames) builder.add(f.frame, f.image != nullptr ? *f.image : none);
     return builder.finish();
 }
 
@@ -61,7 +56,6 @@ ContactSheetBuilder::ContactSheetBuilder(int count, const SheetDesc& desc) : cou
 // The grid and the cells' size, from the first whole frame (or 64 x 48 when there is none):
 // the background, then the labels of the frames added before it.
 void ContactSheetBuilder::start(const Image* first) {
-    started_ = true;
     const int n = count_;
     columns_ = desc_.columns > 0 ? std::min(desc_.columns, n) : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
     const int rows = (n + columns_ - 1) / columns_;
@@ -108,7 +102,7 @@ void ContactSheetBuilder::draw(int cell, std::int64_t frame, const Image* im) {
 void ContactSheetBuilder::add(std::int64_t frame, const Image& image) {
     JOSTLE_ASSERT(added_ < count_, "ContactSheetBuilder: more frames added than the sheet was made for");
     const int cell = added_++;
-    if (!started_) {
+    if (!started()) {
         if (!usable(&image)) {
             waiting_.push_back(frame);  // its label waits for the cell size
             return;
@@ -120,7 +114,7 @@ void ContactSheetBuilder::add(std::int64_t frame, const Image& image) {
 
 Image ContactSheetBuilder::finish() {
     if (count_ == 0) return {};
-    if (!started_) start(nullptr);
+    if (!started()) start(nullptr);
     return std::move(sheet_);
 }
 

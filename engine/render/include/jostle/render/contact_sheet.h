@@ -45,13 +45,13 @@ public:
 private:
     void start(const Image* first);
     void draw(int cell, std::int64_t frame, const Image* image);
+    bool started() const { return columns_ > 0; }  // the grid is laid out (start() ran)
 
     int count_;
     SheetDesc desc_;
     int added_ = 0;
     int columns_ = 0, thumb_w_ = 0, thumb_h_ = 0;
     Image sheet_;
-    bool started_ = false;
     std::vector<std::int64_t> waiting_;  // labels of frames added before the first whole one
 };
 
