@@ -5,11 +5,15 @@
 
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #if defined(__SSE__)
 #include <xmmintrin.h>
+#endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
 #endif
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -102,6 +106,28 @@ inline unsigned lane_bits(Int4 m) {
     return static_cast<unsigned>(_mm_movemask_ps(reinterpret_cast<__m128>(m)));
 #else
     return static_cast<unsigned>((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
+#endif
+}
+
+// Lane i of x and of y in lanes 0 and 1, for an index known only at run time: the lane is
+// picked by a mask and the bits gathered by OR, in registers. (v[i] with a variable i makes
+// GCC store the vector to the stack and load the lane back, a round trip through memory.)
+inline Float4 lane_pair(Float4 x, Float4 y, int i) {
+    const Int4 index = {i, i, i, i};
+    const Int4 pick = Int4{0, 1, 2, 3} == index;
+    const Int4 xs = reinterpret_cast<Int4>(x) & pick, ys = reinterpret_cast<Int4>(y) & pick;
+    // {x0, y0, x1, y1} | {x2, y2, x3, y3}, then its two halves ORed.
+    const Int4 halves = __builtin_shufflevector(xs, ys, 0, 4, 1, 5) | __builtin_shufflevector(xs, ys, 2, 6, 3, 7);
+    return reinterpret_cast<Float4>(halves | __builtin_shufflevector(halves, halves, 2, 3, 2, 3));
+}
+
+// Lanes 0 and 1 as a Vec2, moved as one 64-bit value (two lanes read one by one are packed
+// into the Vec2's register through the stack by GCC: a store forward that fails).
+inline Vec2 low_pair(Float4 v) {
+#if defined(__SSE2__)
+    return std::bit_cast<Vec2>(_mm_cvtsd_f64(_mm_castps_pd(reinterpret_cast<__m128>(v))));
+#else
+    return {v[0], v[1]};
 #endif
 }
 
@@ -212,6 +238,11 @@ inline int prev_index(int i, int n) { return i == 0 ? n - 1 : i - 1; }
 inline Manifold hit_with(float depth, Vec2 normal) {
     if (!all_finite(depth, normal.x, normal.y)) return {};
     return Manifold{true, depth > 0.0f ? depth : 0.0f, plain_zeros(normal)};
+}
+// The same, the normal in lanes 0 and 1 of a vector (kept there up to the result's register).
+inline Manifold hit_with(float depth, Float4 normal) {
+    if (!all_finite(depth, normal[0], normal[1])) return {};
+    return Manifold{true, depth > 0.0f ? depth : 0.0f, low_pair(plain_zeros(normal))};
 }
 
 // The same contact seen from B: the normal flips, the depth stays.

@@ -117,19 +117,16 @@ inline BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
     const Float4 push = pos ? push_pos : push_neg;  // 09-60: the smaller push of each axis
     float best = INFINITY;
     for (int i = 0; i < 4; ++i) best = push[i] < best ? push[i] : best;
-    BoxBox out;
-    if (best == INFINITY) {  // every push overflowed: no axis taken, normal {1, 0}
-        out.manifold = detail::hit_with(best, {1.0f, 0.0f});
-        return out;
-    }
     // The first axis whose push is the least (a later one wins only when strictly smaller).
+    // (When every push overflowed, best is inf and hit_with makes it a miss.)
+    BoxBox out;
     out.axis = std::countr_zero(detail::lane_bits(push == best));
-    out.positive = pos[out.axis] != 0;
+    out.positive = ((detail::lane_bits(pos) >> out.axis) & 1u) != 0;
     // Every axis's normal, +u or -u (a sign flip), then the MTD's: no branch on the sign.
     const Float4 minus_zero = {-0.0f, -0.0f, -0.0f, -0.0f};
     const Float4 signs = pos ? Float4{} : minus_zero;
     const Float4 nx = detail::bit_xor(ux, signs), ny = detail::bit_xor(uy, signs);
-    out.manifold = detail::hit_with(best, {nx[out.axis], ny[out.axis]});
+    out.manifold = detail::hit_with(best, detail::lane_pair(nx, ny, out.axis));
     return out;
 }
 }  // namespace
@@ -564,7 +561,9 @@ Manifold collide(const Obb& a, const Obb& b) {
     // be wrong).
     const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center);
     if (!bb.manifold.hit || !(valid(a) && valid(b))) return {};
-    return bb.manifold;
+    // Rebuilt from its fields, so that GCC assembles the result in its return registers
+    // rather than storing the fields and reloading them as words (a failed store forward).
+    return Manifold{true, bb.manifold.depth, bb.manifold.normal};
 }
 
 Manifold collide(const Aabb& a, const Obb& b) {
