@@ -77,9 +77,9 @@ detail::ConvexView view_of(const detail::SegmentAxes& s, Vec2 offset = {}) {
 //
 // The four axes are computed side by side (GCC's portable vector extension, one lane per
 // axis, each lane exactly the scalar arithmetic), and one test of the four lanes replaces the
-// slides' early exit per axis (09-50): a gap on any axis is a miss. Only a hit picks its axis,
-// in axis order as the loop did (a later axis wins only when strictly smaller), so the results
-// are the same bit for bit.
+// slides' early exit per axis (09-50): a gap on any axis is a miss. The axis is picked in
+// axis order as the loop did (a later axis wins only when strictly smaller), so the results
+// are the same bit for bit (axis and positive mean nothing on a miss).
 struct BoxBox {
     Manifold manifold;
     int axis = 0;          // the MTD's axis: 0, 1 A's x and y, 2, 3 B's x and y

@@ -265,13 +265,14 @@ void canonical_codes(const std::uint8_t* lengths, int n, std::uint16_t* codes) {
 class BitWriter {
 public:
     explicit BitWriter(std::uint8_t* out) : out_(out), start_(out) {}
-    // Up to 57 bits (no bits set past `count`). Every put stores the whole buffer (its bits
+    // Up to 56 bits (no bits set past `count`). Every put stores the whole buffer (its bits
     // past count_ are zero) and keeps only the last partial byte: no branch on whether a
     // word is full, which the codes' varying lengths make unpredictable. The output needs 8
     // bytes of slack.
     void put(std::uint64_t bits, int count) {
         buffer_ |= bits << count_;
-        count_ += count;  // <= 7 + 57
+        JOSTLE_DEBUG_ASSERT(count >= 0 && count <= 56, "BitWriter::put: at most 56 bits a put");
+        count_ += count;  // <= 7 + 56: whole <= 7, so the shift below is < 64
         std::memcpy(out_, &buffer_, 8);  // little-endian (x86, ARM): deflate's byte order
         const int whole = count_ >> 3;
         out_ += whole;
@@ -522,7 +523,7 @@ void compress_strip(const std::uint8_t* data, std::size_t n, bool final, BitWrit
     }
     // Each symbol's code packed with its bit count (code << 8 | count), and for the lengths
     // with the extra bits too: one table load a symbol and one put per three literals or
-    // per length and distance (a put carries up to 57 bits).
+    // per length and distance (a put carries up to 56 bits).
     std::array<std::uint32_t, 256> literal{};
     for (int b = 0; b < 256; ++b) literal[static_cast<std::size_t>(b)] = (std::uint32_t{lit_code[static_cast<std::size_t>(b)]} << 8) | lit_len[b];
     std::array<std::uint32_t, kMaxMatch + 1> length_bits{};  // <= 15 + 5 bits
