@@ -323,7 +323,8 @@ TEST(SweepObb, AnEndFaceShorterThanItsRoundingDoesNotStopABallFarAway) {
     // a box 402 px long and 1.3e-5 px thick, turned, its corners near x = 160 (where a float
     // step is 1.5e-5): an end face's direction was rounding, its window test passed, and a ball
     // of radius 1008 passing 69 px beyond the box's end was stopped there. The end faces are
-    // left to their corners: the ball misses, as it misses a segment in the box's place.
+    // measured along the direction their normals give: the ball misses, as it misses a segment
+    // in the box's place.
     const Circle ball{{-1296, 1008}, 1008};
     const Vec2 v{96, -1520};
     const Obb box{{6.4e-06f, 0}, {201.06194f, 6.4e-06f}, 2.5f};
@@ -338,6 +339,34 @@ TEST(SweepObb, AnEndFaceShorterThanItsRoundingDoesNotStopABallFarAway) {
     ASSERT_TRUE(seg.hit);
     ASSERT_TRUE(hit.hit);
     EXPECT_NEAR(hit.t, seg.t, 1e-4f);
+}
+
+TEST(SweepSegment, AShortSegmentFarFromTheOriginIsNotPassedThrough) {
+    // Found by the collision fuzz target (regressions/collision/sweep_circle_short_segment_far_from_origin.bin):
+    // faces shorter than 64 rounding steps of their ends' coordinates were left to their
+    // vertices (the fix for the thin box above), which near the coordinate limit is 2 px: a
+    // ball of radius 1 crossing the middle of a 1.4 px segment at x ~ 1e5 was stopped only by
+    // an end's circle, 0.27 px into the segment. The same scene moved to the origin is the
+    // answer float can give there.
+    const Vec2 far{99930.0f, 99930.0f};
+    const Circle ball{Vec2{-2.0f, 6.0f} + far, 1.0f};
+    const Vec2 v{16.0f, 1.25f};
+    const Segment seg{Vec2{7.57f, 7.0f} + far, Vec2{7.0f, 5.75f} + far};
+    const SweepHit there = sweep(ball, v, seg);
+    const SweepHit here = sweep(Circle{ball.center - far, 1.0f}, v, Segment{seg.a - far, seg.b - far});
+    ASSERT_TRUE(there.hit);
+    ASSERT_TRUE(here.hit);
+    EXPECT_NEAR(there.t, here.t, 1e-4f);
+    EXPECT_VEC_NEAR(there.normal, here.normal, 1e-3f);
+    // The fuzz input as minimised: a ball of radius 0.5 moving diagonally onto a 1.3 px segment.
+    const Circle small{{99937.0f, 99938.0f}, 0.5f};
+    const Segment diagonal{{99936.0f, 99937.0f}, {99937.25f, 99937.25f}};
+    const Vec2 shift{99936.0f, 99937.0f};
+    const SweepHit s_there = sweep(small, {-24.0f, -24.0f}, diagonal);
+    const SweepHit s_here = sweep(Circle{small.center - shift, 0.5f}, {-24.0f, -24.0f}, Segment{diagonal.a - shift, diagonal.b - shift});
+    ASSERT_TRUE(s_there.hit);
+    ASSERT_TRUE(s_here.hit);
+    EXPECT_NEAR(s_there.t, s_here.t, 1e-4f);
 }
 
 }  // namespace

@@ -122,12 +122,15 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
         const float ee = dot(e, e);
         const float closing = -dot(n, v);
         if (!(ee > 0.0f) || !(closing > 0.0f)) continue;  // a zero-length face is its vertex
-        // So is a face shorter than the rounding of its ends' coordinates (a box 1e-5 px thick
-        // at x = 160, fuzz): e's direction is then rounding, not the face's, and its window
-        // test could pass 70 px away. Its vertices' circles cover it to within that rounding.
-        const auto extent = [](Vec2 p) { return std::fmax(std::fabs(p.x), std::fabs(p.y)); };
-        const float rounding = 64.0f * FLT_EPSILON * (extent(points[i]) + extent(points[(i + 1) % count]));
-        if (!(ee > rounding * rounding)) continue;
+        // The face's window runs along the direction its normal gives, u = n turned a quarter
+        // back (e / |e| for a face whose ends are exact), over [0, len]: its extent along u.
+        // The ends' coordinates are rounded, so for a face only a few of their rounding steps
+        // long e's own direction is mostly rounding (a box 1e-5 px thick at x = 160, fuzz),
+        // and a window along it, tested a ball's radius away, could pass 70 px from the face;
+        // along u it is off by no more than the ends' rounding, wherever the ball is.
+        const Vec2 u{-n.y, n.x};
+        const float len = dot(e, u);
+        if (!(len > 0.0f)) continue;  // rounding turned the face against its normal: its vertices
         const Vec2 f = from - points[i];
         const float gap = dot(n, f) - r;  // from the face's line pushed out by r
         // A start behind that line by more than rounding is not an entry through this face: it
@@ -139,21 +142,21 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
         // The window, with room for rounding: a ball sliding in along a face from exactly its
         // end projects just outside it as often as just inside.
         const Vec2 q = f + t * v;
-        const float along = dot(q, e);
-        const float slack = 16.0f * FLT_EPSILON * (length(q) + std::sqrt(ee)) * std::sqrt(ee);
-        if (along >= -slack && along <= ee + slack) {
+        const float along = dot(q, u);
+        const float slack = 16.0f * FLT_EPSILON * (length(q) + len);
+        if (along >= -slack && along <= len + slack) {
             best_t = t;
             outward = n;
             vertex = -1;
-            beyond_end = along < 0.0f ? i : (along > ee ? (i + 1) % count : -1);
+            beyond_end = along < 0.0f ? i : (along > len ? (i + 1) % count : -1);
             continue;
         }
         // Beside the window, the band within r of the face can still be entered across the
         // window's end. In exact arithmetic the end's vertex circle is met first; when rounding
         // makes that a near-miss, the crossing itself bounds the contact.
-        const float toward = along < 0.0f ? dot(v, e) : -dot(v, e);
+        const float toward = along < 0.0f ? dot(v, u) : -dot(v, u);
         if (!(toward > 0.0f)) continue;
-        const float t_end = along < 0.0f ? -dot(f, e) / dot(v, e) : (ee - dot(f, e)) / dot(v, e);
+        const float t_end = along < 0.0f ? -dot(f, u) / dot(v, u) : (len - dot(f, u)) / dot(v, u);
         if (!(t_end >= t && t_end <= 1.0f && t_end < best_t)) continue;
         const float height = dot(n, f + t_end * v);  // above the face's line at the window's end
         if (!(height >= 0.0f && height <= r)) continue;  // not in the band there
