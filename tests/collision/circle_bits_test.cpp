@@ -14,6 +14,7 @@
 #include <random>
 #include <vector>
 
+#include "bits_check.h"
 #include "test_shapes.h"
 
 namespace jostle {
@@ -26,11 +27,8 @@ bool finite3(float a, float b, float c) { return std::isfinite(a) && std::isfini
 bool valid_circle(const Circle& c) {
     return finite3(c.center.x, c.center.y, c.radius * c.radius) && c.radius >= 0.0f;
 }
-// hit_with: a non-finite answer is a miss; the depth is clamped at 0 and -0 components become +0.
-Manifold hit(float depth, Vec2 n) {
-    if (!finite3(depth, n.x, n.y)) return {};
-    return {true, depth > 0.0f ? depth : 0.0f, {n.x + 0.0f, n.y + 0.0f}};
-}
+using test::same_bits;
+constexpr auto hit = test::scalar_hit;
 
 constexpr float kLeastNormal = 0x1p-126f;  // FLT_MIN: below it a square lost bits
 
@@ -142,26 +140,9 @@ Manifold scalar_obb_circle(const Obb& a, const Circle& b) {
     return m;
 }
 
-::testing::AssertionResult same_bits(const Manifold& got, const Manifold& want) {
-    const auto bits = [](float v) { return std::bit_cast<std::uint32_t>(v); };
-    if (got.hit == want.hit && bits(got.depth) == bits(want.depth) &&
-        bits(got.normal.x) == bits(want.normal.x) && bits(got.normal.y) == bits(want.normal.y))
-        return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure()
-           << "got hit " << got.hit << " depth " << got.depth << " normal (" << got.normal.x << ", "
-           << got.normal.y << "), the scalar loops give hit " << want.hit << " depth " << want.depth
-           << " normal (" << want.normal.x << ", " << want.normal.y << ")";
-}
-
-struct Draw {
-    std::mt19937 rng{20261126};
-    float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); }
-    int below(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng); }
-    // Now and then a value past the limits instead of v.
-    float wild(float v) {
-        constexpr float kValues[] = {kNan, kInf, -kInf, 0.0f, -0.0f, 3e38f, -3e38f, 2e19f, 1e-40f, -1.0f};
-        return below(12) == 0 ? kValues[below(10)] : v;
-    }
+// The draws: seeded, one value in 12 past the limits.
+struct Draw : test::BitsDraw {
+    Draw() : BitsDraw(20261126, 12) {}
 };
 
 Polygon random_convex(Draw& g, int n, float scale, bool integers) {

@@ -10,8 +10,8 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <random>
 
+#include "bits_check.h"
 #include "test_shapes.h"
 
 namespace jostle {
@@ -29,11 +29,8 @@ bool valid_box(const Obb& b) {
            b.half.x >= 0.0f && b.half.y >= 0.0f;
 }
 
-// hit_with: a non-finite answer is a miss; the depth is clamped at 0 and -0 components become +0.
-Manifold hit(float depth, Vec2 n) {
-    if (!(finite(depth) && finite(n.x) && finite(n.y))) return {};
-    return {true, depth > 0.0f ? depth : 0.0f, {n.x + 0.0f, n.y + 0.0f}};
-}
+using test::same_bits;
+constexpr auto hit = test::scalar_hit;
 
 // The lecture's loop over the four axes: A's x and y, then B's x and y. Each box's radius on
 // an axis is its half extents times the |cos| of the angles between the axis and its own axes
@@ -81,26 +78,9 @@ Manifold scalar_aabb_obb(const Aabb& a, const Obb& b) {
     return scalar_box_box(half, Rot{}, b.half, b.rotation(), (b.center - a.min) - half);
 }
 
-::testing::AssertionResult same_bits(const Manifold& got, const Manifold& want) {
-    const auto bits = [](float v) { return std::bit_cast<std::uint32_t>(v); };
-    if (got.hit == want.hit && bits(got.depth) == bits(want.depth) && bits(got.normal.x) == bits(want.normal.x) &&
-        bits(got.normal.y) == bits(want.normal.y))
-        return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "got hit " << got.hit << " depth " << got.depth << " normal (" << got.normal.x
-                                         << ", " << got.normal.y << "), the scalar loop gives hit " << want.hit
-                                         << " depth " << want.depth << " normal (" << want.normal.x << ", "
-                                         << want.normal.y << ")";
-}
-
-struct Draw {
-    std::mt19937 rng{20261127};
-    float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); }
-    int below(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng); }
-    // Now and then a value past the limits instead of v.
-    float wild(float v) {
-        constexpr float kValues[] = {kNan, kInf, -kInf, 0.0f, -0.0f, 3e38f, -3e38f, 2e19f, 1e-40f, -1.0f};
-        return below(16) == 0 ? kValues[below(10)] : v;
-    }
+// The draws: seeded, one value in 16 past the limits, and the boxes this test needs.
+struct Draw : test::BitsDraw {
+    Draw() : BitsDraw(20261127, 16) {}
     // An angle: any, a multiple of a quarter turn (axes parallel: ties), or near one.
     float angle() {
         switch (below(4)) {

@@ -561,8 +561,9 @@ Manifold collide(const Obb& a, const Obb& b) {
     // be wrong).
     const BoxBox bb = box_box(a.half, a.rotation(), b.half, b.rotation(), b.center - a.center);
     if (!bb.manifold.hit || !(valid(a) && valid(b))) return {};
-    // Rebuilt from its fields, so that GCC assembles the result in its return registers
-    // rather than storing the fields and reloading them as words (a failed store forward).
+    // Rebuilt from its fields: returning bb.manifold itself, GCC stores its fields and
+    // reloads them as words (a failed store forward); rebuilt, only the normal still passes
+    // through the stack (3 stack accesses instead of 6; 0.57-0.60 ms against 0.57-0.63).
     return Manifold{true, bb.manifold.depth, bb.manifold.normal};
 }
 
