@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/render/image_compare.h"
 #include "jostle/render/png_io.h"
@@ -81,6 +82,8 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
         }
     }
     if (files.size() != 2) return usage(err, "expected two PNG files (EXPECTED and ACTUAL), got " + std::to_string(files.size()));
+    if (diff_path && same_file(*diff_path, files[0])) return usage(err, "--out: '" + *diff_path + "' is EXPECTED, being compared; give another path");
+    if (diff_path && same_file(*diff_path, files[1])) return usage(err, "--out: '" + *diff_path + "' is ACTUAL, being compared; give another path");
 
     try {
         const Image expected = read_png(files[0]);

@@ -8,14 +8,19 @@
 #include <charconv>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <iterator>
+#include <system_error>
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 
 #include "arena.h"
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/core/interrupt.h"
+#include "jostle/render/renderer.h"
 #include "jostle/replay/replay.h"
 
 namespace jostle {
@@ -33,14 +38,49 @@ std::optional<std::int64_t> parse_whole(std::string_view text, std::int64_t lo, 
     return v;
 }
 
-// "640x480" -> {640, 480}, sides in 1..8192.
+// "640x480" -> {640, 480}, sides in 1..kMaxFrameSide.
 std::optional<std::pair<int, int>> parse_size(std::string_view text) {
     const std::size_t x = text.find('x');
     if (x == std::string_view::npos) return std::nullopt;
-    const auto w = parse_whole(text.substr(0, x), 1, 8192);
-    const auto h = parse_whole(text.substr(x + 1), 1, 8192);
+    const auto w = parse_whole(text.substr(0, x), 1, kMaxFrameSide);
+    const auto h = parse_whole(text.substr(x + 1), 1, kMaxFrameSide);
     if (!w || !h) return std::nullopt;
     return std::pair<int, int>{static_cast<int>(*w), static_cast<int>(*h)};
+}
+
+// An output that would replace the scenario, another output or a frame file: refused before
+// the run (each write is atomic, but the run would still lose the file). "" when none.
+std::string output_clash(const std::string& scenario, const ReplayOptions& options, const std::string& trace) {
+    const std::pair<const char*, const std::string*> outputs[] = {
+        {"--trace", &trace}, {"--sheet", &options.sheet_path}, {"--anim", &options.anim_path}};
+    for (std::size_t i = 0; i < std::size(outputs); ++i) {
+        const auto& [flag, path] = outputs[i];
+        if (path->empty()) continue;
+        if (same_file(*path, scenario)) return std::string(flag) + ": '" + *path + "' is the scenario being played; give another path";
+        for (std::size_t j = 0; j < i; ++j) {
+            if (same_file(*path, *outputs[j].second)) {
+                return std::string(outputs[j].first) + " and " + flag + " name the same file '" + *path + "'; give each its own";
+            }
+        }
+        // frame_NNNNNN.png in the --out folder is a frame's name.
+        if (!options.out_dir.empty()) {
+            const std::filesystem::path p(*path);
+            const std::string name = p.filename().string();
+            const bool frame_name = name.size() >= 16 && name.starts_with("frame_") && name.ends_with(".png") &&
+                                    std::all_of(name.begin() + 6, name.end() - 4, [](char c) { return c >= '0' && c <= '9'; });
+            std::error_code ea, eb;
+            // (Canonical without a trailing separator: "out/" and "out" are one folder.)
+            const auto folder_of = [](const std::filesystem::path& f, std::error_code& ec) {
+                const std::filesystem::path c = std::filesystem::weakly_canonical(std::filesystem::absolute(f, ec), ec);
+                return c.has_filename() ? c : c.parent_path();
+            };
+            const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+            if (frame_name && folder_of(folder, ea) == folder_of(options.out_dir, eb) && !ea && !eb) {
+                return std::string(flag) + ": '" + *path + "' is a frame's name in the --out folder; give another path";
+            }
+        }
+    }
+    return "";
 }
 
 std::string ratio_text(double v) {
@@ -64,8 +104,8 @@ options:
   --frames LIST     which ticks become frames: all (default), 120, 10-20, 300- (to the end),
                     or a comma-separated list of those
   --every N         keep every Nth frame of each range (default 1)
-  --size WxH        frame size in pixels (default: the level's size; the level is scaled
-                    to fit and centred)
+  --size WxH        frame size in pixels, sides 1 to 8192 (default: the level's size, scaled
+                    down to 8192 on its longer side; the level is scaled to fit and centred)
   --overlay         draw the debug overlay: colliders, contacts and MTD arrows, paths
   --no-hud          leave out the score and tick line
   --sheet FILE      write a contact sheet (a PNG grid) of the selected frames, at most 64
@@ -141,6 +181,7 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
         }
     }
     if (scenario_path.empty()) return usage(err, "expected a scenario file");
+    if (const std::string clash = output_clash(scenario_path, options, trace_path); !clash.empty()) return usage(err, clash);
     std::string selection_error;
     const std::optional<FrameSelection> selection = FrameSelection::parse(frames_text, &selection_error);
     if (!selection) return usage(err, "--frames: " + selection_error);
@@ -192,6 +233,16 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             err << scenario_path << ":" << e.line << ": expectation failed at tick " << e.tick << ": expected "
                 << e.text << ", found " << r.actual << "\n";
         }
+        // An output asked for and not written says so, --quiet or not.
+        for (const std::string* path : {&options.sheet_path, &options.anim_path}) {
+            if (!path->empty() && std::find(result.files_written.begin(), result.files_written.end(), *path) == result.files_written.end()) {
+                err << "jostle play: note: " << *path << " not written: "
+                    << (result.ticks == 0 ? std::string("the run has no ticks")
+                                          : "--frames " + frames_text + " selects no tick of this run (ticks 0 to " +
+                                                std::to_string(result.ticks - 1) + ")")
+                    << "\n";
+            }
+        }
         if (!quiet) {
             out << "played " << scenario_path << ": " << result.ticks << " ticks, " << passed << "/"
                 << result.expectations.size() << " expectations passed, " << ratio_text(result.seconds) << " s ("
@@ -208,7 +259,9 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             };
             std::int64_t frames = 0;
             for (const std::string& path : result.files_written) frames += path != options.sheet_path && path != options.anim_path;
-            if (!options.out_dir.empty()) out << "frames: " << frames << " in " << options.out_dir << "/\n";
+            if (!options.out_dir.empty()) {
+                out << "frames: " << frames << " in " << options.out_dir << (options.out_dir.ends_with('/') ? "" : "/") << "\n";
+            }
             if (wrote(options.sheet_path)) out << "contact sheet: " << options.sheet_path << "\n";
             if (wrote(options.anim_path)) out << "animation: " << options.anim_path << "\n";
             if (!trace_path.empty()) out << "trace: " << trace_path << "\n";

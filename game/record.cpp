@@ -79,6 +79,7 @@ exit status: 0 written and verified, 1 the read-back replay differed (nothing wr
 int record_command(std::span<const std::string_view> args, std::istream& in, std::ostream& out, std::ostream& err) {
     std::string level, out_path, script_path, from_path;
     std::optional<std::int64_t> at;
+    bool seed_given = false, tick_rate_given = false;
     RecordDesc desc;
     std::string assets = game::default_assets_dir();
     for (std::size_t i = 0; i < args.size(); ++i) {
@@ -99,11 +100,13 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
             const auto n = parse_unsigned(v, UINT64_MAX);
             if (!n) return usage(err, "--seed: expected a whole number from 0 to 18446744073709551615, got '" + std::string(v) + "'");
             desc.seed = *n;
+            seed_given = true;
         }
         if (a == "--tick-rate") {
             const auto n = parse_unsigned(v, 1000);
             if (!n || *n < 1) return usage(err, "--tick-rate: expected a whole number from 1 to 1000, got '" + std::string(v) + "'");
             desc.tick_rate = static_cast<int>(*n);
+            tick_rate_given = true;
         }
         if (a == "--at") {
             const auto n = parse_unsigned(v, static_cast<std::uint64_t>(kMaxScenarioTicks));
@@ -117,6 +120,12 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         return usage(err, "--from needs --at TICK (how many ticks to keep)");
     }
     if (!from_path.empty() && !level.empty()) return usage(err, "--level cannot be used with --from (the level is the scenario's)");
+    if (!from_path.empty() && seed_given) return usage(err, "--seed cannot be used with --from (the seed is the scenario's)");
+    if (!from_path.empty() && tick_rate_given) {
+        return usage(err, "--tick-rate cannot be used with --from (the tick rate is the scenario's)");
+    }
+    if (same_file(out_path, script_path)) return usage(err, "-o: '" + out_path + "' is the script being read; give another path");
+    // (-o may be the --from scenario: re-recording in place reads it whole before anything is written.)
     if (from_path.empty() && level.empty()) return usage(err, "expected --level LEVEL (or --from SCENARIO --at TICK)");
 
     try {
@@ -154,11 +163,13 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
 
         // Doom's rule: write the file, read it back from the disk, replay it, and keep it only
         // when the replay is the recorded run, tick for tick.
+        // (A target written in place, such as /dev/stdout on a pipe, cannot be read back: its
+        // bytes are replayed from memory and sent only once they pass.)
         AtomicFile file(out_path);
-        file.write(text);
-        file.flush();
-        std::string read_back;
-        {
+        std::string read_back = text;
+        if (!file.in_place()) {
+            file.write(text);
+            file.flush();
             std::ifstream back(file.temp_path(), std::ios::binary);
             read_back = read_all(back);
         }
@@ -178,6 +189,7 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
                 << first_difference << " on; nothing was written\n";
             return 1;
         }
+        if (file.in_place()) file.write(text);
         file.commit();
         // The replay's expectations are the recording's, in the same order (both sorted by
         // tick); the recording knows which file and line each came from.

@@ -5,7 +5,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <filesystem>
+#include <fstream>
+#include <future>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -75,7 +80,7 @@ TEST_F(AtomicFileTest, ErrorsNameTheTargetAndLeaveNothingBehind) {
     } catch (const InputError& e) {
         EXPECT_THAT(e.what(), StartsWith(missing + ": cannot write: cannot create a file in "));
     }
-    // The rename fails when the target is a non-empty folder, after the data is written.
+    // A folder is refused before anything is written.
     fs::create_directories(folder_.path() / "taken" / "inside");
     try {
         write_file_atomic(path("taken"), "x");
@@ -84,6 +89,59 @@ TEST_F(AtomicFileTest, ErrorsNameTheTargetAndLeaveNothingBehind) {
         EXPECT_EQ(std::string(e.what()), path("taken") + ": cannot write: it is a folder");
     }
     EXPECT_EQ(files(), std::vector<std::string>{"taken"});
+}
+
+// A named pipe stays a pipe: the bytes go through it (the rename would have put a regular
+// file in its place, as it did to /dev/null before), and a file patched after it is written
+// says why a pipe cannot take it.
+TEST_F(AtomicFileTest, APipeIsWrittenInPlaceNotReplaced) {
+    const std::string fifo = path("pipe");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    auto reader = std::async(std::launch::async, [&] {
+        std::ifstream in(fifo, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    });
+    {
+        AtomicFile file(fifo);
+        EXPECT_TRUE(file.in_place());
+        EXPECT_EQ(file.temp_path(), "");
+        file.write("through the pipe");
+        file.commit();
+    }
+    EXPECT_EQ(reader.get(), "through the pipe");
+    EXPECT_TRUE(fs::is_fifo(fifo));
+    EXPECT_EQ(files(), std::vector<std::string>{"pipe"});
+
+    auto drain = std::async(std::launch::async, [&] {
+        std::ifstream in(fifo, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    });
+    try {
+        AtomicFile file(fifo);
+        file.write("header");
+        (void)file.tell();
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), fifo + ": cannot write: a pipe cannot take this file (its header is patched once "
+                                                "the rest is written): give a file path");
+    }
+    drain.get();
+    EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+// A link to a file: the file gets the new bytes and the link stays a link; a dangling link is
+// replaced by the file, as a new file would be.
+TEST_F(AtomicFileTest, ALinkKeepsPointingAtTheReplacedFile) {
+    write_file_atomic(path("real.txt"), "old");
+    fs::create_symlink(path("real.txt"), path("link.txt"));
+    write_file_atomic(path("link.txt"), "new");
+    EXPECT_TRUE(fs::is_symlink(path("link.txt")));
+    EXPECT_EQ(read_text(path("real.txt")), "new");
+    fs::create_symlink(path("nowhere.txt"), path("dangling.txt"));
+    write_file_atomic(path("dangling.txt"), "made");
+    EXPECT_FALSE(fs::is_symlink(path("dangling.txt")));
+    EXPECT_EQ(read_text(path("dangling.txt")), "made");
+    EXPECT_EQ(files(), (std::vector<std::string>{"dangling.txt", "link.txt", "real.txt"}));
 }
 
 }  // namespace

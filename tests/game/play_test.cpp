@@ -319,6 +319,22 @@ TEST_F(Play, TheSheetIsTheContactSheetOfTheFrames) {
     EXPECT_TRUE(sheet.rgba == expected.rgba);
 }
 
+// A level wider than the largest frame (8192 px) renders at its own shape, scaled down to
+// 8192 px on its longer side, instead of stopping at the renderer's limit.
+TEST_F(Play, ALevelWiderThanAFrameIsScaledDownToFit) {
+    const fs::path assets = dir_.path() / "assets";
+    fs::create_directories(assets / "levels");
+    std::ofstream((assets / "levels" / "wide.level").string(), std::ios::binary) << "jostle-level 1\nsize 9000 100\nplayer 100 50\n";
+    const std::string s = path("wide.scn");
+    std::ofstream(s, std::ios::binary) << "jostle-scenario 1\nengine 0.1.0\nlevel wide\nseed 1\ntick-rate 60\nlevel-hash "
+                                       << game::ArenaGame(assets.string()).level_hash("wide") << "\n\n0-2 left\n";
+    const RunResult r = run_jostle({"play", s, "--assets", assets.string(), "--out", path("frames"), "--frames", "1", "--quiet"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Image frame = read_png(path("frames/frame_000001.png"));
+    EXPECT_EQ(frame.width, 8192);
+    EXPECT_EQ(frame.height, 91);  // 100 * 8192 / 9000, rounded
+}
+
 TEST_F(Play, AnOutputThatCannotBeWrittenIsBadInput) {
     const std::string s = scenario("s.scn", kDrive);
     const std::string trace = path("no/such/folder/t.trace");

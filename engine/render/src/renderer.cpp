@@ -192,7 +192,7 @@ Vec2 Renderer::sprite_size(SpriteId id) const {
 }
 
 void Renderer::begin_frame(int width, int height, Color clear, Camera camera) {
-    JOSTLE_ASSERT(width >= 1 && width <= 8192 && height >= 1 && height <= 8192, "frame size must be 1..8192");
+    JOSTLE_ASSERT(width >= 1 && width <= kMaxFrameSide && height >= 1 && height <= kMaxFrameSide, "frame size must be 1..8192");
     Impl& r = *impl_;
     r.in_frame = true;
     r.width = width;

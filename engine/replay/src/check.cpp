@@ -135,7 +135,12 @@ ScenarioCheck check_scenario(const Game& game, const std::string& scenario_path,
         c.actual_ticks = run.ticks;
         c.new_trace = format_trace(run, options.dump_every);
 
-        // The trace.
+        // The trace. (A folder opens as a stream that reads nothing: it would look like a
+        // broken golden that --update could replace, which it cannot.)
+        std::error_code folder_ec;
+        if (fs::is_directory(c.trace_path, folder_ec)) {
+            throw InputError(SourceLocation{c.trace_path, 0, 0}, "a folder is where the golden trace should be: move it away");
+        }
         bool exists = false;
         const std::string golden_text = read_file(c.trace_path, &exists);
         c.trace_missing = !exists;
@@ -346,6 +351,7 @@ std::vector<std::string> collect_scenarios(const std::vector<std::string>& args)
             for (const auto& entry : fs::directory_iterator(arg, ec)) {
                 if (entry.path().extension() == ".scn") found.push_back(entry.path().string());
             }
+            if (found.empty()) throw InputError(SourceLocation{arg, 0, 0}, "no scenario files (*.scn) in this folder");
             std::sort(found.begin(), found.end());
             out.insert(out.end(), found.begin(), found.end());
         } else if (fs::exists(arg, ec)) {

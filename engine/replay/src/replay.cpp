@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
@@ -108,6 +109,22 @@ bool ReplayResult::expectations_passed() const {
     return std::all_of(expectations.begin(), expectations.end(), [](const ExpectationResult& r) { return r.passed; });
 }
 
+namespace {
+
+// The frame: the options' size, else the level's, scaled down to kMaxFrameSide on its longer
+// side when it is larger (a level may be up to 2e5 px wide; the camera fits it either way).
+std::pair<int, int> frame_size(const ReplayOptions& options, Vec2 level) {
+    if (options.width > 0 && options.height > 0) return {options.width, options.height};
+    const float longer = std::max({level.x, level.y, 1.0f});
+    const float scale = longer > static_cast<float>(kMaxFrameSide) ? static_cast<float>(kMaxFrameSide) / longer : 1.0f;
+    const auto side = [&](float extent) {
+        return std::clamp(static_cast<int>(std::lround(extent * scale)), 1, kMaxFrameSide);
+    };
+    return {side(level.x), side(level.y)};
+}
+
+}  // namespace
+
 ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOptions& options) {
     const auto started = std::chrono::steady_clock::now();
     std::unique_ptr<Simulation> sim = game.start(scenario.level, scenario.seed, scenario.tick_rate);
@@ -126,8 +143,7 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
     std::unique_ptr<FrameWriter> writer;
     std::unique_ptr<AnimationWriter> animation;
     const Vec2 level = sim->level_size();
-    const int width = options.width > 0 ? options.width : std::max(1, static_cast<int>(std::lround(level.x)));
-    const int height = options.height > 0 ? options.height : std::max(1, static_cast<int>(std::lround(level.y)));
+    const auto [width, height] = frame_size(options, level);
     // The level fits the frame, centred.
     Camera camera;
     camera.zoom = std::min(static_cast<float>(width) / std::max(level.x, 1.0f), static_cast<float>(height) / std::max(level.y, 1.0f));

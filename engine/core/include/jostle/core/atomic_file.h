@@ -4,6 +4,10 @@
 // commit(). Without commit() (an error, an exception unwinding) the temporary file is removed
 // and the target is untouched. Every error is an InputError naming the target path:
 // "out/frame_000001.png: cannot write: No space left on device".
+// A path that is a link to a regular file replaces the file it points at (the link stays). A
+// target that is not a regular file (a device such as /dev/null, a FIFO, a socket, /dev/stdout
+// on a pipe) cannot be replaced: it is written in place, and commit() reports any byte that did
+// not arrive. A folder is an error.
 #pragma once
 
 #include <cstdint>
@@ -32,17 +36,27 @@ public:
     void commit();
 
     const std::string& path() const { return path_; }
-    const std::string& temp_path() const { return temp_path_; }
+    const std::string& temp_path() const { return temp_path_; }  // empty when written in place
+    bool in_place() const { return stream_; }  // not a regular file: bytes go out as written
 
 private:
     [[noreturn]] void fail(const std::string& what) const;
+    [[noreturn]] void fail_seek(int e) const;
     std::string path_;
-    std::string temp_path_;
+    std::string rename_to_;  // path_, or the regular file a link at path_ points at
+    std::string temp_path_;  // empty when written in place
+    bool stream_ = false;    // written in place (not a regular file)
     std::FILE* file_ = nullptr;
     bool committed_ = false;
 };
 
 // The whole file at once: AtomicFile, write, commit.
 void write_file_atomic(const std::string& path, std::string_view bytes);
+
+// Whether writing `output` would replace the file `other` names (an input, or another
+// output), so that a command can refuse before it starts: both name one existing regular file
+// (through links and different spellings), or neither exists yet and they are the same path
+// made absolute and normal. Devices and pipes never clash (/dev/null may take two outputs).
+bool same_file(const std::string& output, const std::string& other);
 
 }  // namespace jostle

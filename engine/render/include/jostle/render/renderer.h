@@ -22,6 +22,8 @@ namespace jostle {
 
 // The largest sprite side add_sprite takes.
 inline constexpr int kMaxSpriteSide = 2048;
+// The largest frame side begin_frame takes.
+inline constexpr int kMaxFrameSide = 8192;
 
 struct Color {
     std::uint8_t r = 0;
@@ -67,7 +69,7 @@ public:
     Vec2 sprite_size(SpriteId id) const;  // {0, 0} for an unknown id
 
     // A frame: begin, draw (painter's order: later draws cover earlier ones), end.
-    // width and height in 1..8192 (asserted).
+    // width and height in 1..kMaxFrameSide (asserted).
     void begin_frame(int width, int height, Color clear, Camera camera = {});
     // The sprite centred at `center`, turned by `angle` (radians, +x toward +y), scaled, and
     // multiplied by `tint` (white: as it is).

@@ -24,7 +24,7 @@ struct ReplayOptions {
     // Frames as PNG files in this folder (frame_NNNNNN.png, by tick), when not empty.
     std::string out_dir;
     FrameSelection frames;             // which ticks become frames (--frames, --every)
-    int width = 0, height = 0;         // frame size; 0: the level's size
+    int width = 0, height = 0;         // frame size; 0: the level's size (longer side at most kMaxFrameSide)
     DrawOptions draw;                  // overlay, HUD
     std::string sheet_path;            // a contact sheet of the selected frames, when not empty
     std::string anim_path;             // an animated PNG of the selected frames, when not empty
