@@ -515,11 +515,16 @@ ArenaGame::ArenaGame(std::string assets_dir, Rules rules) : assets_dir_(std::mov
     for (const auto& entry : std::filesystem::directory_iterator(assets_dir_ + "/levels", ec)) {
         if (entry.path().extension() == ".level") vocabulary_.levels.push_back(entry.path().stem().string());
     }
-    // Without it every level would be "unknown (expected one of: )": say what is wrong instead.
+    // Without them every level would be "unknown (expected one of: )": say what is wrong instead.
     if (ec) {
         throw InputError(SourceLocation{assets_dir_ + "/levels", 0, 0},
                          "cannot list the levels: " + ec.message() +
                              " (expected the assets folder's levels/NAME.level files; --assets or $JOSTLE_ASSETS says where it is)");
+    }
+    if (vocabulary_.levels.empty()) {
+        throw InputError(SourceLocation{assets_dir_ + "/levels", 0, 0},
+                         "the assets' levels folder has no levels (expected NAME.level files in it; --assets or "
+                         "$JOSTLE_ASSETS says where the assets are)");
     }
     std::sort(vocabulary_.levels.begin(), vocabulary_.levels.end());
 }

@@ -51,7 +51,7 @@ options:
                     and diff images side by side) and DIR/junit.xml (every scenario)
   --jobs N          check N scenarios at once (default 1)
   --tolerance N     per-channel difference (0..255) that still counts as equal in images
-  --max-pixels N    how many pixels may differ in each image (default 0)
+  --max-pixels N    how many pixels may differ in each image (0..9223372036854775807; default 0)
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
 
 Sharding: with TEST_TOTAL_SHARDS and TEST_SHARD_INDEX (or GTEST_TOTAL_SHARDS and
@@ -97,7 +97,10 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             }
             if (a == "--max-pixels") {
                 const auto n = parse_whole(v, 0, INT64_MAX);
-                if (!n) return usage(err, "--max-pixels: expected a whole number >= 0, got '" + std::string(v) + "'");
+                if (!n) {
+                    return usage(err, "--max-pixels: expected a whole number from 0 to " + std::to_string(INT64_MAX) +
+                                          ", got '" + std::string(v) + "'");
+                }
                 options.image_tolerance.max_differing_pixels = *n;
             }
             continue;

@@ -44,7 +44,7 @@ options:
   --out DIFF.png    write a diff picture: EXPECTED faded toward white with every differing
                     pixel in red (written atomically, whatever the outcome)
   --tolerance N     largest channel difference (0..255) that still counts as equal; default 0
-  --max-pixels N    how many differing pixels are allowed; default 0
+  --max-pixels N    how many differing pixels are allowed (0..9223372036854775807); default 0
 
 output: one line, "identical", "match" or "differ", with the counts.
 exit status: 0 the images match, 1 they differ, 2 bad usage or an unreadable image.
@@ -72,7 +72,10 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
                 options.max_channel_delta = static_cast<int>(*n);
             } else {
                 const auto n = parse_count(*v, 0, INT64_MAX);
-                if (!n) return usage(err, "--max-pixels: expected a whole number >= 0, got '" + std::string(*v) + "'");
+                if (!n) {
+                    return usage(err, "--max-pixels: expected a whole number from 0 to " + std::to_string(INT64_MAX) +
+                                          ", got '" + std::string(*v) + "'");
+                }
                 options.max_differing_pixels = *n;
             }
         } else if (a.size() > 1 && a.front() == '-') {

@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "jostle/core/error.h"
@@ -31,17 +32,24 @@ public:
     // Anything else (an angle): |v| <= 1e6.
     float number(std::size_t i, float limit = 1e6f, const char* what = "a number from -1e6 to 1e6") const {
         const Word& w = words_[i];
-        float value = 0.0f;
-        const auto [end, ec] = std::from_chars(w.text.data(), w.text.data() + w.text.size(), value);
-        if (ec != std::errc() || end != w.text.data() + w.text.size() || !std::isfinite(value) || std::fabs(value) > limit) {
+        // A number finer than a float (1e-320) is rounded to one (0 or a denormal), like any other.
+        const std::optional<float> value = parse_float(w.text);
+        if (!value || !std::isfinite(*value) || std::fabs(*value) > limit) {
             fail(w.column, std::string("expected ") + what + ", got '" + std::string(w.text) + "'");
         }
-        return value;
+        return *value;
     }
     // A positive length or speed (a radius, a width, px/s): 0 < v <= kMaxCoordinate.
     float positive(std::size_t i, const char* what) const {
         const float v = coordinate(i);
-        if (!(v > 0.0f)) fail(words_[i].column, std::string("expected a positive ") + what + ", got '" + std::string(words_[i].text) + "'");
+        if (!(v > 0.0f)) {
+            const std::string_view text = words_[i].text;
+            // 1e-320 is positive, but a float has nothing that small: say why it is refused.
+            const std::string_view digits = text.substr(0, text.find_first_of("eE"));
+            const bool rounded_to_zero = v == 0.0f && digits.find_first_of("123456789") != std::string_view::npos;
+            fail(words_[i].column, std::string("expected a positive ") + what + ", got '" + std::string(text) + "'" +
+                                       (rounded_to_zero ? " (too small for a float: it rounds to 0)" : ""));
+        }
         return v;
     }
     int whole(std::size_t i, int min, int max, const char* what) const {

@@ -21,7 +21,9 @@
 // line and what was expected. A UTF-8 byte order mark and CRLF line ends are accepted.
 // Limits: every coordinate, length and speed within +-1e5 (kMaxCoordinate), angles within
 // +-1e6, mass <= 1000; at most kMaxLevelThings things; polygons of 3 to 16 vertices; lines
-// and words as in jostle/core/text.h (kMaxLineBytes, kMaxWordBytes).
+// and words as in jostle/core/text.h (kMaxLineBytes, kMaxWordBytes). A number finer than a
+// float (1e-320) rounds to the nearest float (0), as strtof rounds it; a length that must be
+// positive is then refused, saying so.
 #pragma once
 
 #include <string>

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
+#include <ios>
 #include <istream>
 #include <limits>
 #include <memory>
@@ -122,9 +123,13 @@ std::string quote_key(std::string_view key) {
     return out;
 }
 
+// The shortest text that reads back as `value`; plain digits for everyday sizes (200000 rather
+// than 2e+05), an exponent for the rest (1e+19).
 std::string format_double(double value) {
     char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    const bool plain = std::fabs(value) >= 1e-4 && std::fabs(value) < 1e15;
+    const auto result = plain ? std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed)
+                              : std::to_chars(buffer, buffer + sizeof buffer, value);
     return std::string(buffer, result.ptr);
 }
 
@@ -176,8 +181,8 @@ private:
     std::string_view what_;
 };
 
-// A JSON number as a float. `name` is the quoted name for messages; `expected` completes
-// "<name> must be ..." when the value is not a number.
+// A JSON number as a float (an angle: not in pixels, so any float). `name` is the quoted name
+// for messages; `expected` completes "<name> must be ..." when the value is not a number.
 float to_float(const Json& value, const std::string& name, std::string_view expected) {
     if (!value.is_number()) throw BadQuery(name + " must be " + std::string(expected));
     const double d = value.get<double>();
@@ -188,16 +193,44 @@ float to_float(const Json& value, const std::string& name, std::string_view expe
     return static_cast<float>(d);
 }
 
+// What a number in pixels is, for the range it must be in and the message when it is not.
+enum class Pixels { coordinate, motion, half_extent, radius };
+
+// A JSON number in pixels: a coordinate, a motion, a half extent or a radius. collision.h
+// (LIMITS) promises its precision only within |x|, |y| <= kMaxCoordinate (1e5, as levels are
+// held to); beyond it results lose precision, and far beyond it (1e18 and more) squares
+// overflow and hits become misses. A query is answered right or refused, so a number past the range is refused
+// with the range, like 1e39, which no float holds. `not_a_number` completes "<name> must be
+// ..." when the value is not a number.
+float to_pixels(const Json& value, const std::string& name, std::string_view not_a_number, Pixels kind) {
+    static_assert(kMaxCoordinate == 1e5f, "the messages below say 1e5");
+    if (!value.is_number()) throw BadQuery(name + " must be " + std::string(not_a_number));
+    const double d = value.get<double>();
+    // Compared as the float it becomes (as levels are): 100000.001 is the float 1e5.
+    if (std::isfinite(d) && std::fabs(d) <= static_cast<double>(std::numeric_limits<float>::max()) &&
+        std::fabs(static_cast<float>(d)) <= kMaxCoordinate) {
+        return static_cast<float>(d);
+    }
+    const char* what = kind == Pixels::coordinate    ? "a coordinate from -1e5 to 1e5"
+                       : kind == Pixels::motion      ? "a motion from -1e5 to 1e5 on each axis"
+                       : kind == Pixels::half_extent ? "a half extent from 0 to 1e5"
+                                                     : "a radius from 0 to 1e5";
+    throw BadQuery(name + " is " + format_double(d) + ": expected " + what +
+                   " (the collision module's documented range)");
+}
+
 // [x, y] as a Vec2.
-Vec2 to_vec2(const Json& value, const std::string& name) {
+Vec2 to_vec2(const Json& value, const std::string& name, Pixels kind = Pixels::coordinate) {
     const std::string expected = name + " must be [x, y], an array of 2 numbers";
     if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number()) {
         throw BadQuery(expected);
     }
-    return {to_float(value[0], name + "[0]", "a number"), to_float(value[1], name + "[1]", "a number")};
+    return {to_pixels(value[0], name + "[0]", "a number", kind), to_pixels(value[1], name + "[1]", "a number", kind)};
 }
 
-Vec2 field_vec2(const Fields& fields, std::string_view key) { return to_vec2(fields.required(key), quote_key(key)); }
+Vec2 field_vec2(const Fields& fields, std::string_view key, Pixels kind = Pixels::coordinate) {
+    return to_vec2(fields.required(key), quote_key(key), kind);
+}
 
 // An integer in [low, high] (a JSON number with an integer value: 3 and 3.0 both count).
 std::optional<int> to_int(const Json& value, double low, double high) {
@@ -232,7 +265,7 @@ Obb parse_obb(const Json& j) {
     const Fields fields(j, "obb", {"type", "center", "half", "angle"});
     Obb box;
     box.center = field_vec2(fields, "center");
-    box.half = field_vec2(fields, "half");
+    box.half = field_vec2(fields, "half", Pixels::half_extent);
     if (!(box.half.x >= 0.0f && box.half.y >= 0.0f)) {
         throw BadQuery("\"half\" must be >= 0 on both axes (half extents), got " + format_vec(box.half));
     }
@@ -261,7 +294,7 @@ Circle parse_circle(const Json& j) {
     const Fields fields(j, "circle", {"type", "center", "radius"});
     Circle circle;
     circle.center = field_vec2(fields, "center");
-    circle.radius = to_float(fields.required("radius"), "\"radius\"", "a finite number >= 0");
+    circle.radius = to_pixels(fields.required("radius"), "\"radius\"", "a finite number >= 0", Pixels::radius);
     if (!(circle.radius >= 0.0f)) throw BadQuery("\"radius\" must be a finite number >= 0");
     return circle;
 }
@@ -416,9 +449,9 @@ std::string op_sweep(const Json& q) {
         throw BadQuery("\"a\" must be a circle for sweep (the moving circle), got " +
                        std::string(name_of(kind_of(a.shape))));
     }
-    const Vec2 va = field_vec2(fields, "va");
+    const Vec2 va = field_vec2(fields, "va", Pixels::motion);
     const ParsedShape b = parse_shape(fields.required("b"), "b");
-    const Vec2 vb = field_vec2(fields, "vb");
+    const Vec2 vb = field_vec2(fields, "vb", Pixels::motion);
     return contact_json(sweep(*circle, va, b.shape, vb));
 }
 
@@ -607,10 +640,16 @@ int run_query(std::istream& in, std::ostream& out) {
         line.clear();
         bool read_any = false;
         int c = 0;
-        while ((c = input->sbumpc()) != std::char_traits<char>::eof()) {
-            read_any = true;
-            if (c == '\n') break;
-            if (line.size() <= kMaxQueryLineBytes) line.push_back(static_cast<char>(c));
+        try {
+            while ((c = input->sbumpc()) != std::char_traits<char>::eof()) {
+                read_any = true;
+                if (c == '\n') break;
+                if (line.size() <= kMaxQueryLineBytes) line.push_back(static_cast<char>(c));
+            }
+        } catch (const std::ios_base::failure& e) {
+            // A file stream's read failed (stdin is a folder: "Is a directory"); the lines
+            // answered so far stand.
+            throw InputError("standard input: cannot read: " + e.code().message());
         }
         if (!read_any) break;
         bool ok = true;
@@ -633,7 +672,13 @@ int query_command(std::span<const std::string_view> args, std::istream& in, std:
             << "' (queries are read from stdin)\nRun 'jostle query --help' for usage.\n";
         return 2;
     }
-    const int status = run_query(in, out);
+    int status = 0;
+    try {
+        status = run_query(in, out);
+    } catch (const InputError& e) {
+        err << "jostle query: " << e.what() << '\n';
+        return 2;
+    }
     if (!out) {
         err << "jostle query: cannot write the results to stdout\n";
         return 2;
@@ -686,18 +731,23 @@ shapes S:
   A mask's "at" is the world pixel (integers) of its top-left pixel; masks are at most
   4096 x 4096 pixels.
 
-Coordinates are pixels, y pointing down. Numbers must be finite and fit a float; keep
-|x|, |y| <= 1e5 for full precision. Results print each float in the shortest form that
-reads back as the same float (0.5, 2, 1e-05; -0 prints as 0); a result too large for a
-float prints as null.
+Coordinates are pixels, y pointing down. Every coordinate, half extent, radius and each
+axis of va and vb must be within -1e5 .. 1e5 (half extents and radii 0 .. 1e5): the range
+in which the collision module promises its precision (kMaxCoordinate); a line with a number
+past it is an error, not a less exact answer. An angle may be any float; a mask's "at" is whole pixels
+within -1e9 .. 1e9. A number finer than a float (1e-320) rounds to the nearest float. Results
+print each float in the shortest form that reads back as the same float (0.5, 2, 1e-05; -0
+prints as 0); a result too large for a float prints as null.
 
 errors:
   A line that cannot be answered gets {"error":"line N: ..."} as its output line, saying
   what was wrong and what was expected; the lines after it are still answered. Not valid
   JSON, a missing or unknown key (usually a typo), a value of the wrong type or range, a
   bad polygon or mask, an unreadable PNG, and a line longer than 1 MiB are errors.
+  Standard input that cannot be read (a folder) ends the run with a message on stderr.
 
-exit status: 0 every line was answered, 2 some line was an error (or bad usage).
+exit status: 0 every line was answered, 2 some line was an error, stdin could not be read
+(or bad usage).
 
 example:
   $ echo '{"op":"collide","a":{"type":"aabb","min":[0,0],"max":[2,2]},"b":{"type":"aabb","min":[1,0],"max":[3,2]}}' | jostle query

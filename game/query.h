@@ -26,7 +26,8 @@ std::string run_query_line(std::string_view line, std::int64_t line_number, bool
 // Answers every line of `in` until its end, writing each answer and '\n' to `out` and flushing
 // after each one (so a program can talk to `jostle query` through a pipe, line by line).
 // Returns the exit status: 0 if every line was answered, 2 if some line was an error or the
-// output could not be written.
+// output could not be written. Throws InputError ("standard input: cannot read: Is a
+// directory") when reading `in` fails, after answering the lines before.
 int run_query(std::istream& in, std::ostream& out);
 
 // `jostle query`: the command line entry point; args are the arguments after "query" (there

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <charconv>
 #include <fstream>
+#include <ios>
 #include <istream>
 #include <optional>
 #include <ostream>
-#include <sstream>
 #include <string>
 
 #include "arena.h"
@@ -34,10 +34,22 @@ std::optional<std::uint64_t> parse_unsigned(std::string_view text, std::uint64_t
     return v;
 }
 
+// The whole script on standard input. A read that fails (stdin is a folder) says so instead of
+// ending the script there (`text << in.rdbuf()` would swallow the error: an empty script).
 std::string read_all(std::istream& in) {
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+    std::string text;
+    std::streambuf* input = in.rdbuf();
+    if (input == nullptr) return text;
+    try {
+        char chunk[4096];
+        for (std::streamsize n = 0; (n = input->sgetn(chunk, sizeof chunk)) > 0;) {
+            text.append(chunk, static_cast<std::size_t>(n));
+        }
+    } catch (const std::ios_base::failure& e) {
+        throw_if_interrupted();  // Ctrl-C while the script was typed
+        throw InputError("<stdin>: cannot read the script: " + e.code().message());
+    }
+    return text;
 }
 
 }  // namespace

@@ -1,12 +1,14 @@
 // text_test.cpp: the shared line tokenizer (words, columns, '#' comments), the checks every
-// text line passes (length, text not binary, word length, a BOM) and the exact number and hash
-// formatting every file format relies on.
+// text line passes (length, text not binary, word length, a BOM), the number parser every text
+// format shares and the exact number and hash formatting every file format relies on.
 #include "jostle/core/text.h"
 
 #include <gtest/gtest.h>
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <random>
 
 #include "jostle/core/error.h"
@@ -25,6 +27,38 @@ TEST(SplitWords, WordsWithColumnsUntilAComment) {
     EXPECT_EQ(words[2].column, 8);
     EXPECT_TRUE(split_words("# only a comment").empty());
     EXPECT_TRUE(split_words(" \t\r").empty());
+}
+
+TEST(ParseNumber, WholeWordsInFromCharsForm) {
+    EXPECT_EQ(parse_float("-12.5"), -12.5f);
+    EXPECT_EQ(parse_double("1e-3"), 1e-3);
+    EXPECT_EQ(parse_float("3.4028235e38"), std::numeric_limits<float>::max());
+    for (const char* bad : {"", "+1", " 1", "1 ", "1x", "0x10", "--1", "e5", "1e"}) {
+        EXPECT_FALSE(parse_float(bad)) << bad;
+        EXPECT_FALSE(parse_double(bad)) << bad;
+    }
+    // inf and nan are numbers to from_chars; the callers refuse them with their own message.
+    EXPECT_TRUE(std::isnan(*parse_float("nan")));
+    EXPECT_TRUE(std::isinf(*parse_double("-inf")));
+}
+
+TEST(ParseNumber, TooSmallRoundsToTheNearestValueTooLargeIsRefused) {
+    // Finer than the type: rounded as strtof/strtod round it (0, -0 or a denormal), not refused.
+    EXPECT_EQ(parse_float("1e-320"), 0.0f);
+    EXPECT_TRUE(std::signbit(*parse_float("-1e-320")));
+    EXPECT_EQ(parse_float("1e-50"), 0.0f);
+    EXPECT_EQ(parse_float("1e-40"), std::strtof("1e-40", nullptr));  // a denormal, as from_chars gives it
+    EXPECT_EQ(parse_float("1e-45"), std::numeric_limits<float>::denorm_min());  // nearest is the least denormal
+    EXPECT_EQ(parse_float("7.1e-46"), std::numeric_limits<float>::denorm_min());
+    EXPECT_EQ(parse_float("7e-46"), 0.0f);  // just under half the least denormal
+    EXPECT_EQ(parse_double("1e-320"), std::strtod("1e-320", nullptr));
+    EXPECT_EQ(parse_double("1e-330"), 0.0);
+    EXPECT_EQ(parse_double("-1e-400"), 0.0);
+    EXPECT_EQ(parse_float("0.0000000000000000000000000000000000000000000000000001"), 0.0f);
+    // Beyond the type's largest value: refused, both signs.
+    for (const char* big : {"1e39", "-1e39", "3.5e38"}) EXPECT_FALSE(parse_float(big)) << big;
+    for (const char* big : {"1e309", "-1e400"}) EXPECT_FALSE(parse_double(big)) << big;
+    EXPECT_EQ(parse_double("1e39"), 1e39);
 }
 
 TEST(ShortestText, ReadsBackAsTheSameValue) {

@@ -99,7 +99,12 @@ TEST_F(Imgdiff, BadUsageAndBadInputExitTwo) {
     expect_error(run({path("a.png"), path("a.png"), "--tolerance"}), "--tolerance needs a value");
     expect_error(run({path("a.png"), path("a.png"), "--tolerance", "256"}),
                  "--tolerance: expected a whole number from 0 to 255, got '256'");
-    expect_error(run({path("a.png"), path("a.png"), "--max-pixels", "-1"}), "--max-pixels: expected a whole number >= 0, got '-1'");
+    expect_error(run({path("a.png"), path("a.png"), "--max-pixels", "-1"}),
+                 "--max-pixels: expected a whole number from 0 to 9223372036854775807, got '-1'");
+    // Past the largest value the message states the range, not only its lower end.
+    expect_error(run({path("a.png"), path("a.png"), "--max-pixels", "18446744073709551615"}),
+                 "--max-pixels: expected a whole number from 0 to 9223372036854775807, got '18446744073709551615'");
+    EXPECT_EQ(run({path("a.png"), path("a.png"), "--max-pixels", "9223372036854775807"}).status, 0);
     expect_error(run({path("a.png"), path("a.png"), "--fast"}), "unknown option '--fast'");
     expect_error(run({path("a.png"), path("missing.png")}), "missing.png");
     expect_error(run({path("a.png"), std::string(JOSTLE_TEST_DATA) + "/truncated.png"}), "truncated.png");

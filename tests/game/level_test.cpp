@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -286,6 +287,24 @@ TEST(LevelErrors, NumbersTooBigNotFiniteOrNotPositive) {
     EXPECT_EQ(error_of_line("cannon k 1 2 0 1.5 600"), "l.level:4:16: expected a period in ticks (1 .. 100000), got '1.5'");
     EXPECT_EQ(error_of_line("cannon k 1 2 0 100001 600"), "l.level:4:16: expected a period in ticks (1 .. 100000), got '100001'");
     EXPECT_EQ(error_of_line("cannon k 1 2 0 10 0"), "l.level:4:19: expected a positive ball speed, got '0'");
+}
+
+TEST(Level, NumbersFinerThanAFloatRoundToTheNearestFloat) {
+    // 1e-320 is within -1e5 .. 1e5; a float has nothing that small, so it rounds to 0 (or to a
+    // denormal, as strtof gives), like any other number rounds to its nearest float.
+    const Level level = parse_level(kHead + "wall w 1e-320 -1e-320 1e-40 8\ncrate c 1 2 3 4 -1e-330\n", "l.level", "test");
+    ASSERT_EQ(level.things.size(), 2u);
+    EXPECT_EQ(level.things[0].position.x, 0.0f);
+    EXPECT_EQ(level.things[0].position.y, 0.0f);
+    EXPECT_TRUE(std::signbit(level.things[0].position.y));
+    EXPECT_EQ(level.things[0].size.x, static_cast<float>(1e-40));  // a denormal
+    EXPECT_EQ(level.things[1].angle, 0.0f);
+    // Too large is still refused; a length that must be positive says why 1e-320 is not.
+    EXPECT_EQ(error_of_line("wall w 0 0 1e39 8"), "l.level:4:12: expected a coordinate from -1e5 to 1e5, got '1e39'");
+    EXPECT_EQ(error_of_line("pickup p 1 2 1e-320"),
+              "l.level:4:14: expected a positive radius, got '1e-320' (too small for a float: it rounds to 0)");
+    EXPECT_EQ(error_of_line("pickup p 1 2 0.0e5"), "l.level:4:14: expected a positive radius, got '0.0e5'");
+    EXPECT_EQ(error_of_line("pickup p 1 2 1e-40"), "no error");
 }
 
 }  // namespace

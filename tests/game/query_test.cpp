@@ -1,10 +1,14 @@
 // query_test.cpp: `jostle query` in process (run_query_line and run_query: every op, every
 // shape type, the number format, each error message) and end to end (the built jostle binary
 // with stdin from tests/data, checking every output line and the exit status).
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <ios>
+#include <streambuf>
+#include <system_error>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -371,20 +375,83 @@ TEST(QueryErrors, NotJsonWithBadUtf8StillAnswersValidJson) {
 
 TEST(QueryErrors, NumbersJsonCannotHoldOrFloatCannotHold) {
     EXPECT_EQ(error_of(closest("[1e400,0]", kUnitCircle)), "line 1: not valid JSON: number overflow parsing '1e400'");
+    // Beyond a float is beyond the collision module's range too: the message gives the range.
     EXPECT_EQ(error_of(closest("[1e39,0]", kUnitCircle)),
-              R"(line 1: "point"[0] is 1e+39, too large for a float (at most about 3.4e+38))");
+              R"(line 1: "point"[0] is 1e+39: expected a coordinate from -1e5 to 1e5 (the collision module's documented range))");
     EXPECT_EQ(error_of(closest("[0,0]", circle_at("[0,-1e39]", "1"))),
-              R"(line 1: "center"[1] is -1e+39, too large for a float (at most about 3.4e+38))");
+              R"(line 1: "center"[1] is -1e+39: expected a coordinate from -1e5 to 1e5 (the collision module's documented range))");
     EXPECT_EQ(error_of(closest("[0,0]", circle_at("[0,0]", "1e39"))),
-              R"(line 1: "radius" is 1e+39, too large for a float (at most about 3.4e+38))");
+              R"(line 1: "radius" is 1e+39: expected a radius from 0 to 1e5 (the collision module's documented range))");
+    // An angle is not in pixels: any float, but not beyond one.
+    EXPECT_EQ(error_of(closest("[0,0]", R"({"type":"obb","center":[0,0],"half":[1,1],"angle":1e39})")),
+              R"(line 1: "angle" is 1e+39, too large for a float (at most about 3.4e+38))");
     // JSON has no NaN or Infinity literals.
     EXPECT_THAT(error_of(closest("[NaN,0]", kUnitCircle)), StartsWith("line 1: not valid JSON: "));
     EXPECT_THAT(error_of(closest("[Infinity,0]", kUnitCircle)), StartsWith("line 1: not valid JSON: "));
-    // The largest float itself is accepted; a result that overflows a float prints as null.
-    EXPECT_EQ(answer(closest("[3.4028234e38,0]", R"({"type":"aabb","min":[0,0],"max":[0,0]})")),
-              R"({"point":[0,0],"distance":null})");
-    EXPECT_EQ(answer(closest("[1e18,0]", R"({"type":"aabb","min":[0,0],"max":[0,0]})")),
-              R"({"point":[0,0],"distance":1e+18})");
+    // Finer than a float: rounds to one, like any number.
+    EXPECT_EQ(answer(closest("[3,-1e-320]", circle_at("[1e-50,0]", "1"))), R"({"point":[1,0],"distance":2})");
+}
+
+TEST(QueryErrors, PixelsPastTheCollisionModulesRangeAreRefused) {
+    // collision.h, LIMITS: exact within |x|, |y| <= 1e5 (kMaxCoordinate). Far past it squares
+    // overflow and hits became misses: this cast through a unit circle answered "hit":false, and
+    // the same sweep with va [1e20,0] passed the box. Now both are refused, saying the range.
+    const std::string range = " (the collision module's documented range)";
+    EXPECT_EQ(error_of(R"({"op":"cast","from":[-1e19,0],"to":[1e19,0],"shape":)" + kUnitCircle + "}"),
+              R"(line 1: "from"[0] is -1e+19: expected a coordinate from -1e5 to 1e5)" + range);
+    const std::string box10 = R"({"type":"aabb","min":[11,-5],"max":[12,5]})";
+    EXPECT_EQ(error_of(R"({"op":"sweep","a":)" + kUnitCircle + R"(,"va":[1e20,0],"b":)" + box10 + R"(,"vb":[0,0]})"),
+              R"(line 1: "va"[0] is 1e+20: expected a motion from -1e5 to 1e5 on each axis)" + range);
+    EXPECT_EQ(error_of(R"({"op":"sweep","a":)" + kUnitCircle + R"(,"va":[0,0],"b":)" + box10 + R"(,"vb":[0,-100000.5]})"),
+              R"(line 1: "vb"[1] is -100000.5: expected a motion from -1e5 to 1e5 on each axis)" + range);
+    // Every coordinate, extent and radius of every shape and op.
+    const auto coordinate = [&](const std::string& name, const std::string& value) {
+        return "line 1: " + name + " is " + value + ": expected a coordinate from -1e5 to 1e5" + range;
+    };
+    EXPECT_EQ(error_of(closest("[0,0]", R"({"type":"aabb","min":[-200000,0],"max":[1,1]})")), coordinate(R"("min"[0])", "-200000"));
+    EXPECT_EQ(error_of(closest("[0,0]", R"({"type":"aabb","min":[0,0],"max":[1,1e6]})")), coordinate(R"("max"[1])", "1000000"));
+    EXPECT_EQ(error_of(closest("[0,0]", R"({"type":"obb","center":[0,100001],"half":[1,1]})")),
+              coordinate(R"("center"[1])", "100001"));
+    EXPECT_EQ(error_of(closest("[0,0]", R"({"type":"obb","center":[0,0],"half":[1,3e5]})")),
+              R"(line 1: "half"[1] is 300000: expected a half extent from 0 to 1e5)" + range);
+    EXPECT_EQ(error_of(closest("[0,0]", R"({"type":"polygon","points":[[0,0],[1,0],[0,1e18]]})")),
+              coordinate(R"("points"[2][1])", "1e+18"));
+    EXPECT_EQ(error_of(closest("[0,0]", R"({"type":"segment","a":[0,0],"b":[-1e10,0]})")), coordinate(R"("b"[0])", "-10000000000"));
+    EXPECT_EQ(error_of(closest("[0,0]", circle_at("[0,0]", "100000.5"))),
+              R"(line 1: "radius" is 100000.5: expected a radius from 0 to 1e5)" + range);
+    EXPECT_EQ(error_of(closest("[1e18,0]", kBox02)), coordinate(R"("point"[0])", "1e+18"));
+    EXPECT_EQ(error_of(R"({"op":"cast","from":[0,0],"to":[0,3.4028234e38],"shape":)" + kUnitCircle + "}"),
+              coordinate(R"("to"[1])", "3.4028234e+38"));
+    EXPECT_EQ(error_of(R"({"op":"lines","a":[[0,0],[1,1]],"b":[[0,1],[2e5,2]]})"), coordinate(R"("b"[1][0])", "200000"));
+    // A negative radius or half extent within the range keeps its own message.
+    EXPECT_EQ(error_of(closest("[0,0]", circle_at("[0,0]", "-1"))), R"(line 1: "radius" must be a finite number >= 0)");
+}
+
+TEST(QueryErrors, AtTheRangesEndsAnswersAreRight) {
+    // The reviewer's cast, at the range's ends: through the unit circle, t = (1e5 - 1) / 2e5.
+    Json j = answer_json(R"({"op":"cast","from":[-1e5,0],"to":[1e5,0],"shape":)" + kUnitCircle + "}");
+    EXPECT_TRUE(j["hit"].get<bool>());
+    EXPECT_NEAR(j["t"].get<double>(), 0.499995, 1e-7);
+    EXPECT_EQ(j["normal"], Json::parse("[-1,0]"));
+    // Corner to corner: the circle is met 1 px before the middle of a 2e5 * sqrt 2 path.
+    j = answer_json(R"({"op":"cast","from":[-1e5,-1e5],"to":[1e5,1e5],"shape":)" + kUnitCircle + "}");
+    EXPECT_TRUE(j["hit"].get<bool>());
+    EXPECT_NEAR(j["t"].get<double>(), 0.5 - 1.0 / (2e5 * std::sqrt(2.0)), 1e-7);
+    // The sweep: the ball's right side meets the box 10 px away after 10 px of its 1e5.
+    j = answer_json(R"({"op":"sweep","a":)" + kUnitCircle + R"(,"va":[1e5,0],"b":{"type":"aabb","min":[11,-5],"max":[12,5]},"vb":[0,0]})");
+    EXPECT_TRUE(j["hit"].get<bool>());
+    EXPECT_NEAR(j["t"].get<double>(), 1e-4, 1e-9);
+    EXPECT_EQ(j["normal"], Json::parse("[1,0]"));
+    // Both moving at the most, toward each other: closing 2e5 px, 10 px to go.
+    j = answer_json(R"({"op":"sweep","a":)" + kUnitCircle + R"(,"va":[1e5,0],"b":)" + circle_at("[12,0]", "1") +
+                    R"(,"vb":[-1e5,0]})");
+    EXPECT_TRUE(j["hit"].get<bool>());
+    EXPECT_NEAR(j["t"].get<double>(), 5e-5, 1e-9);
+    // A shape at the far corner, as large as allowed.
+    EXPECT_EQ(answer(collide(circle_at("[-1e5,-1e5]", "1e5"), circle_at("[1e5,-1e5]", "1e5"))),
+              R"({"hit":true,"depth":0,"normal":[1,0],"mtd":[0,0]})");
+    EXPECT_EQ(answer(closest("[1e5,1e5]", R"({"type":"obb","center":[-1e5,1e5],"half":[1e5,1],"angle":0})")),
+              R"({"point":[0,1e+05],"distance":1e+05})");  // results print shortest
 }
 
 TEST(QueryErrors, Radius) {
@@ -615,6 +682,43 @@ TEST(QueryStream, AHugeLineIsAnErrorAndTheNextLineIsAnswered) {
     EXPECT_EQ(out.str(),
               "{\"error\":\"line 1: line is longer than 1 MiB (1048576 bytes)\"}\n"
               "{\"kind\":\"parallel\",\"point\":null}\n");
+}
+
+// Gives `text`, then fails the way a file stream does when read() fails (an ios_base::failure
+// carrying errno).
+class FailingBuffer : public std::streambuf {
+public:
+    FailingBuffer(std::string text, int error) : text_(std::move(text)), error_(error) {
+        setg(text_.data(), text_.data(), text_.data() + text_.size());
+    }
+
+protected:
+    int_type underflow() override {
+        throw std::ios_base::failure("basic_filebuf::underflow error reading the file",
+                                     std::error_code(error_, std::generic_category()));
+    }
+
+private:
+    std::string text_;
+    int error_;
+};
+
+TEST(QueryStream, AnUnreadableStdinSaysSoAfterTheLinesBeforeIt) {
+    // Was "jostle: basic_filebuf::underflow error reading the file: Is a directory" from main().
+    FailingBuffer buffer("{\"op\":\"lines\",\"a\":[[0,0],[1,0]],\"b\":[[0,1],[1,1]]}\n{\"op\"", EIO);
+    std::istream in(&buffer);
+    std::ostringstream out;
+    std::ostringstream err;
+    EXPECT_EQ(query_command({}, in, out, err), 2);
+    EXPECT_EQ(out.str(), "{\"kind\":\"parallel\",\"point\":null}\n");
+    EXPECT_EQ(err.str(), "jostle query: standard input: cannot read: Input/output error\n");
+
+    std::ifstream folder(kData);  // opening a folder works; reading it fails
+    std::ostringstream out2;
+    std::ostringstream err2;
+    EXPECT_EQ(query_command({}, folder, out2, err2), 2);
+    EXPECT_EQ(out2.str(), "");
+    EXPECT_EQ(err2.str(), "jostle query: standard input: cannot read: Is a directory\n");
 }
 
 TEST(QueryStream, ExtraArgumentsAreAUsageError) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -508,6 +509,21 @@ TEST(ScenarioErrors, MalformedTicks) {
     EXPECT_EQ(error_of(with_header("3\n")), "s.scn:7:2: expected the actions held (or '-' for none) after the tick");
 }
 
+TEST(ScenarioErrors, SignedZeroTicksAreRefusedLikePlusZero) {
+    // A tick is plain digits: "+0" was always refused; "-0" is 0 to from_chars, but refused alike.
+    EXPECT_EQ(error_of(with_header("+0 left\n")), "s.scn:7:1: expected a tick number (0 .. 16777215), got '+0'");
+    EXPECT_EQ(error_of(with_header("-0 left\n")), "s.scn:7:1: expected a tick number (0 .. 16777215), got '-0'");
+    EXPECT_EQ(error_of(with_header("-0-9 left\n")), "s.scn:7:1: expected a tick number (0 .. 16777215), got '-0'");
+    EXPECT_EQ(error_of(with_header("0--0 left\n")), "s.scn:7:3: expected a tick number (0 .. 16777215), got '-0'");
+    EXPECT_EQ(error_of(with_header("at -0 screenshot\n")), "s.scn:7:4: expected a tick number (0 .. 16777215), got '-0'");
+    EXPECT_EQ(error_of(with_header("at -0 expect player alive\n")),
+              "s.scn:7:4: expected a tick number (0 .. 16777215), got '-0'");
+    EXPECT_EQ(error_of(with_header("at -0 end\n")), "s.scn:7:4: expected a tick number (0 .. 16777216), got '-0'");
+    EXPECT_EQ(error_of(with_header("-00 left\n")), "s.scn:7:1: expected a tick number (0 .. 16777215), got '-00'");
+    // Plain 0 and leading zeros still read.
+    EXPECT_EQ(parse(with_header("0-00 left\nat 0 screenshot\n")).ticks(), 1);
+}
+
 TEST(ScenarioErrors, MalformedLevelHash) {
     const auto error = [](const std::string& hash) { return error_of(header_with("level-hash 0123456789abcdef", "level-hash " + hash)); };
     EXPECT_EQ(error("0123456789ABCDEF"), "s.scn:6:12: expected 16 lowercase hex digits, got '0123456789ABCDEF'");
@@ -591,6 +607,21 @@ TEST(ScenarioErrors, NonFiniteAndMalformedNumbers) {
     EXPECT_EQ(error_of(with_header("at 5 expect player in -1e39 0 1 1\n")),
               "s.scn:7:23: expected a number from -3.4e38 to 3.4e38, got '-1e39'");
     EXPECT_EQ(parse(with_header("at 5 expect player in -3.4e38 0 3.4e38 1\n")).expectations[0].region.max.x, 3.4e38f);
+}
+
+TEST(Scenario, NumbersFinerThanTheirTypeRoundToIt) {
+    // 1e-330 is in range, only finer than a double: it rounds to 0 (strtod's answer), not
+    // "expected a finite number". A region corner then rounds once more, to a float.
+    const Scenario s = parse(with_header("at 5 expect var score >= 1e-330\nat 5 expect player in -1e-330 1e-320 1e-40 1\n"));
+    ASSERT_EQ(s.expectations.size(), 2u);
+    EXPECT_EQ(s.expectations[0].value, 0.0);
+    const Aabb region = s.expectations[1].region;
+    EXPECT_EQ(region.min.x, 0.0f);
+    EXPECT_TRUE(std::signbit(region.min.x));
+    EXPECT_EQ(region.min.y, 0.0f);
+    EXPECT_EQ(region.max.x, static_cast<float>(1e-40));  // a float denormal
+    // Too large is still refused.
+    EXPECT_EQ(error_of(with_header("at 5 expect var score = 1e309\n")), "s.scn:7:25: expected a finite number, got '1e309'");
 }
 
 TEST(ScenarioErrors, DashMixedWithActions) {

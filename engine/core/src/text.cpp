@@ -8,12 +8,45 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <type_traits>
 
 #include "jostle/core/error.h"
 
 namespace jostle {
+namespace {
+
+// parse_float and parse_double. std::from_chars reads the number, and is the judge of its form;
+// it reports a value beyond the type's range both ways, too large and too small (what rounds to
+// 0), as out of range. The second is a value like any other, rounded: strtof/strtod give it,
+// correctly rounded (jostle never calls setlocale, so they read '.' as the C locale does).
+template <class T>
+std::optional<T> parse_real(std::string_view text) {
+    T value{};
+    const char* const last = text.data() + text.size();
+    const auto [end, ec] = std::from_chars(text.data(), last, value);
+    if (text.empty() || end != last) return std::nullopt;
+    if (ec == std::errc()) return value;
+    if (ec != std::errc::result_out_of_range) return std::nullopt;
+    const std::string copy(text);  // strto* read up to a NUL
+    char* stop = nullptr;
+    T rounded{};
+    if constexpr (std::is_same_v<T, float>) {
+        rounded = std::strtof(copy.c_str(), &stop);
+    } else {
+        rounded = std::strtod(copy.c_str(), &stop);
+    }
+    if (stop != copy.c_str() + copy.size() || std::isinf(rounded)) return std::nullopt;  // too large
+    return rounded;
+}
+
+}  // namespace
+
+std::optional<float> parse_float(std::string_view text) { return parse_real<float>(text); }
+std::optional<double> parse_double(std::string_view text) { return parse_real<double>(text); }
 
 std::vector<Word> split_words(std::string_view line) {
     std::vector<Word> words;

@@ -37,19 +37,19 @@ public:
         const std::int64_t most = end_tick ? kMaxScenarioTicks : kMaxScenarioTicks - 1;
         std::int64_t value = 0;
         const auto [end, ec] = std::from_chars(word.text.data(), word.text.data() + word.text.size(), value);
-        if (ec != std::errc() || end != word.text.data() + word.text.size() || value < 0 || value > most) {
+        // "-0" is 0 to from_chars, but a tick is written without a sign: refused like "+0".
+        if (ec != std::errc() || end != word.text.data() + word.text.size() || word.text.starts_with('-') || value < 0 ||
+            value > most) {
             fail(word, "expected a tick number (0 .. " + std::to_string(most) + "), got '" + std::string(word.text) + "'");
         }
         return value;
     }
 
     double number(const Word& word) const {
-        double value = 0.0;
-        const auto [end, ec] = std::from_chars(word.text.data(), word.text.data() + word.text.size(), value);
-        if (ec != std::errc() || end != word.text.data() + word.text.size() || !std::isfinite(value)) {
-            fail(word, "expected a finite number, got '" + std::string(word.text) + "'");
-        }
-        return value;
+        // A number finer than a double (1e-330) is rounded to one (0 or a denormal), like any other.
+        const std::optional<double> value = parse_double(word.text);
+        if (!value || !std::isfinite(*value)) fail(word, "expected a finite number, got '" + std::string(word.text) + "'");
+        return *value;
     }
 
     // A region corner: stored as a float, so a finite double beyond the float range (which

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,6 +46,15 @@ struct Word {
 // The whitespace-separated words of `line` (spaces, tabs, a trailing '\r'); a '#' anywhere
 // starts a comment that runs to the end of the line.
 std::vector<Word> split_words(std::string_view line);
+
+// All of `text` as a number, in std::from_chars' form: an optional '-', digits with an optional
+// '.', an optional exponent ("-12.5", "1e-3"; no '+', no spaces, no hex), or "inf" and "nan",
+// which callers refuse or take as they choose. A number too small for the type (1e-320 as a
+// float) rounds to the nearest value the type has, as strtof and strtod round it: 0, -0 or a
+// denormal; it is in range, only finer than the type. A number too large for the type (1e39
+// as a float) and anything that is not a number give nullopt.
+std::optional<float> parse_float(std::string_view text);
+std::optional<double> parse_double(std::string_view text);
 
 // The shortest text that reads back as exactly the same value ("104.25", "0.1", "nan").
 std::string shortest_text(double v);

@@ -23,7 +23,9 @@
 //   at 60 expect event pickup          the game reported "pickup" at or before tick 60
 //   at 120 end                         the run is 120 ticks: 0 .. 119
 //
-// Ticks are numbered from 0; "at T" happens after tick T's step (frame T shows that state).
+// Ticks are numbered from 0 and written as plain digits (no sign: "-0" and "+0" are refused);
+// "at T" happens after tick T's step (frame T shows that state). Other numbers are decimal; one
+// finer than a double (1e-330) rounds to the nearest double (0), one beyond it is refused.
 // The file is UTF-8 text (a leading byte order mark and CRLF line ends are accepted; each line
 // passes check_text_line of jostle/core/text.h first: length, no binary bytes).
 // Input lines go in increasing tick order without overlaps; directives may stand anywhere.
