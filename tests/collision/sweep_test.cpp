@@ -341,6 +341,28 @@ TEST(SweepObb, AnEndFaceShorterThanItsRoundingDoesNotStopABallFarAway) {
     EXPECT_NEAR(hit.t, seg.t, 1e-4f);
 }
 
+TEST(SweepObb, ABallMeetingAThinBoxNearItsEndIsStopped) {
+    // Found by the collision fuzz target (regressions/collision/sweep_circle_thin_box_far_corner_tie.bin):
+    // the box above, and a ball of radius 992 meeting its long face 0.24 px from the end. The
+    // corner across the 1.3e-5 px end face met the ball first by a rounding step; its direction
+    // lies outside that corner's cone, no corner claimed it, and the adjacent face it fell back
+    // to ran along the motion, so the ball passed through. The face facing the direction most
+    // is the long one it hits: the same t and normal as the segment in the box's place.
+    const Circle ball{{-528, -976}, 992};
+    const Vec2 va{1008, 96}, vb{-1536, -1536};
+    const Obb box{{6.4e-06f, 0}, {201.06194f, 6.4e-06f}, 2.5f};
+    const Vec2 u = rotate(box.rotation(), Vec2{box.half.x, 0.0f});
+    const SweepHit seg = sweep(ball, va, Shape{Segment{box.center - u, box.center + u}}, vb);
+    const SweepHit hit = sweep(ball, va, Shape{box}, vb);
+    ASSERT_TRUE(seg.hit);
+    ASSERT_TRUE(hit.hit);
+    EXPECT_NEAR(hit.t, seg.t, 1e-4f);
+    EXPECT_VEC_NEAR(hit.normal, seg.normal, 1e-3f);
+    const SweepHit poly = sweep(ball, va - vb, to_polygon(box));
+    ASSERT_TRUE(poly.hit);
+    EXPECT_NEAR(poly.t, seg.t, 1e-4f);
+}
+
 TEST(SweepSegment, AShortSegmentFarFromTheOriginIsNotPassedThrough) {
     // Found by the collision fuzz target (regressions/collision/sweep_circle_short_segment_far_from_origin.bin):
     // faces shorter than 64 rounding steps of their ends' coordinates were left to their

@@ -195,7 +195,7 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
         // to the other; a point-sized box has none). Outside it, rounding let this vertex win
         // a tie: with the neighbour across a tiny face (a thin box's other corner), or with any
         // corner of a shape that float sees as a point, whose cone holds the direction; or
-        // with an adjacent face, whose exact normal it then takes. "Non-zero length" is the
+        // with a face (an adjacent one, or a thin box's far one), whose exact normal it then takes. "Non-zero length" is the
         // squared length's, on purpose: a face whose square underflows belongs to a shape that
         // float sees as a point, and counting it narrows the cone so that a ball passing over
         // such a box misses it (regression sweep_circle_over_point_sized_box_tunnels.bin).
@@ -233,6 +233,7 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
                 if (i != vertex && i != before && i != after) candidates[n_candidates++] = i;
             }
             bool moved = false;
+            Vec2 outward_face;
             for (std::size_t k = 0; k < n_candidates; ++k) {
                 const int nb = candidates[k];
                 const detail::CircleContact c = detail::first_contact_with_circle(points[nb] - from, v, r);
@@ -242,9 +243,23 @@ SweepHit sweep_convex(const Circle& moving, Vec2 v, const Vec2* points, const Ve
                     break;
                 }
             }
-            Vec2 n_prev, n_next;
-            if (!moved && cone_bounds(vertex, n_prev, n_next))
-                outward = dot(outward, n_prev) >= dot(outward, n_next) ? n_prev : n_next;
+            // Else the contact is a face's: the one facing the direction most. That is an
+            // adjacent face when rounding let the vertex win a tie with it, and the far face of a
+            // thin box when the vertex across its end won one with that face (a box 1.3e-5 px
+            // thick, fuzz: its nearer corner's direction, taken from the wrong side's cone, ran
+            // along the motion and the ball passed through).
+            if (!moved) {
+                float facing = -INFINITY;
+                for (int i = 0; i < count; ++i) {
+                    if (!(length_squared(points[(i + 1) % count] - points[i]) > 0.0f)) continue;
+                    const float d = dot(outward, normals[i]);
+                    if (d > facing) {
+                        facing = d;
+                        outward_face = normals[i];
+                    }
+                }
+                if (facing > -INFINITY) outward = outward_face;
+            }
         }
     }
     if (!moving_into(v, -outward)) return {};  // only grazes it
