@@ -482,6 +482,9 @@ std::string op_lines(const Json& q) {
     const Fields fields(q, "lines", {"op", "a", "b"});
     const auto [a1, a2] = to_point_pair(fields.required("a"), "a");
     const auto [b1, b2] = to_point_pair(fields.required("b"), "b");
+    // Two equal points make no line (A = B = 0): intersect() would call it parallel.
+    if (a1 == a2) throw BadQuery("\"a\" gives the same point twice: a line needs two different points");
+    if (b1 == b2) throw BadQuery("\"b\" gives the same point twice: a line needs two different points");
     const LineIntersection crossing = intersect(line_through(a1, a2), line_through(b1, b2));
     ObjectWriter out;
     switch (crossing.kind) {
@@ -713,7 +716,8 @@ queries and their results:
       the point of the shape nearest the given point (distance 0 inside).
   {"op":"lines","a":[[x,y],[x,y]],"b":[[x,y],[x,y]]}
       -> {"kind":"point","point":[x,y]}, or "parallel" / "coincident" with "point":null
-      where the infinite lines through the two pairs of points cross.
+      where the infinite lines through the two pairs of points cross (the two points
+      of a pair must differ).
 
 shapes S:
   {"type":"aabb","min":[x,y],"max":[x,y]}                 min <= max on both axes

@@ -356,6 +356,15 @@ TEST(QueryLines, PointParallelCoincident) {
     EXPECT_EQ(answer(R"({"op":"lines","a":[[0,0],[1,0]],"b":[[2,0],[3,0]]})"), R"({"kind":"coincident","point":null})");
 }
 
+TEST(QueryLines, TwoEqualPointsAreNoLine) {
+    // (The collision module calls a line with A = B = 0 parallel to everything; a query with
+    // such a line is a mistake, so it is an error.)
+    EXPECT_EQ(error_of(R"({"op":"lines","a":[[1,1],[1,1]],"b":[[0,1],[1,2]]})"),
+              R"(line 1: "a" gives the same point twice: a line needs two different points)");
+    EXPECT_EQ(error_of(R"({"op":"lines","a":[[0,1],[1,2]],"b":[[-0.0,5],[0,5]]})"),
+              R"(line 1: "b" gives the same point twice: a line needs two different points)");
+}
+
 // ---------------------------------------------------------------------------------------
 // Errors: each message, exactly
 // ---------------------------------------------------------------------------------------
