@@ -317,6 +317,8 @@ std::unique_ptr<Mask> mask_from_rows(const Json& rows_json) {
     for (std::size_t i = 0; i < rows_json.size(); ++i) {
         if (!rows_json[i].is_string()) throw BadQuery(expected);
         const auto& row = rows_json[i].get_ref<const std::string&>();
+        // (As "rows":[] is refused: a mask of no pixels in a query is a mistake, not a shape.)
+        if (row.empty()) throw BadQuery("\"rows\"[" + std::to_string(i) + "] is empty: a mask row has at least one pixel");
         if (row.size() > static_cast<std::size_t>(kMaxMaskSide)) {
             throw BadQuery("\"rows\"[" + std::to_string(i) + "] has " + std::to_string(row.size()) +
                            " pixels; a mask is at most " + limit + " x " + limit + " pixels");

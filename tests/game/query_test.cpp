@@ -356,6 +356,16 @@ TEST(QueryLines, PointParallelCoincident) {
     EXPECT_EQ(answer(R"({"op":"lines","a":[[0,0],[1,0]],"b":[[2,0],[3,0]]})"), R"({"kind":"coincident","point":null})");
 }
 
+TEST(QueryErrors, AMaskOfNoPixelsIsAnError) {
+    const std::string circle = R"("b":{"type":"circle","center":[0,0],"radius":1}})";
+    EXPECT_EQ(error_of(R"({"op":"collide","a":{"type":"mask","at":[0,0],"rows":[]},)" + circle),
+              R"(line 1: "rows" must be a non-empty array of strings of '#' (set) and '.' (clear))");
+    EXPECT_EQ(error_of(R"({"op":"collide","a":{"type":"mask","at":[0,0],"rows":[""]},)" + circle),
+              R"(line 1: "rows"[0] is empty: a mask row has at least one pixel)");
+    EXPECT_EQ(error_of(R"({"op":"collide","a":{"type":"mask","at":[0,0],"rows":["#",""]},)" + circle),
+              R"(line 1: "rows"[1] is empty: a mask row has at least one pixel)");
+}
+
 TEST(QueryLines, TwoEqualPointsAreNoLine) {
     // (The collision module calls a line with A = B = 0 parallel to everything; a query with
     // such a line is a mistake, so it is an error.)
