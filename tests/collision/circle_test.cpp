@@ -362,6 +362,31 @@ TEST(CircleLimits, AFarVertexOfASliverWinningARoundingTieDoesNotTurnTheNormal) {
     }
 }
 
+TEST(CircleLimits, TwoVerticesFloatCannotTellApartGiveTheContactOfTheOneWhoseConeHoldsIt) {
+    // Found by the collision fuzz target (regressions/collision/collide_circle_polygon_coincident_vertices_tie.bin):
+    // a quad whose bottom face is 1.8e-41 px long, a circle of radius 10 centred 1.35 px below
+    // and right of that corner. Both ends of the face are at the same squared distance; the
+    // first won, the direction lies outside its cone (it belongs to the other end's), and the
+    // bottom face's normal (0, -1) was taken: the MTD left 0.084 px of overlap. The other end's
+    // direction and depth are the contact, from every starting vertex.
+    const std::vector<Vec2> pts = {{18.75f, 10}, {0, 18.75f}, {0, -22.75f}, {1.7937e-41f, -22.75f}};
+    const Circle c{{0.5f, -24}, 10};
+    const Vec2 d = c.center - Vec2{0, -22.75f};
+    const Vec2 dir = (1.0f / length(d)) * d;
+    for (int rot = 0; rot < static_cast<int>(pts.size()); ++rot) {
+        std::vector<Vec2> q(pts.begin() + rot, pts.end());
+        q.insert(q.end(), pts.begin(), pts.begin() + rot);
+        const Polygon quad = *make_polygon(q, nullptr);
+        const Manifold m = collide(quad, c);
+        ASSERT_TRUE(m.hit) << rot;
+        EXPECT_NEAR(m.depth, 10.0f - length(d), 1e-5f) << rot;
+        EXPECT_VEC_NEAR(m.normal, dir, 1e-6f) << rot;
+        const Manifold back = collide(c, quad);  // the same contact, the normal from the circle
+        ASSERT_TRUE(back.hit) << rot;
+        EXPECT_VEC_NEAR(back.normal, -dir, 1e-6f) << rot;
+    }
+}
+
 TEST(CircleLimits, ADenormalSquaredDistanceStillGivesAUnitNormal) {
     // Found by the collision fuzz target: a circle 5.6e-23 px from a box's face (dist^2 a
     // denormal, whose square root is a few percent off) gave the normal (0, -1.05). Each
