@@ -762,6 +762,28 @@ TEST(ResolutionPasses, contacts_with_something_immovable_have_the_last_word) {
 // A NaN velocity stays with its body: a static floor under it and another box resting on the
 // same floor keep finite positions and velocities (the floor is immovable for impulses: its
 // velocity as contacts see it stays zero, whatever a NaN impulse would add).
+TEST(ResolutionNan, a_nan_velocity_does_not_spread_to_the_bodies_it_touches) {
+    // Found by review: the box under a NaN box (and everything under that) took the NaN
+    // through the friction impulse, std::clamp passing a NaN through, even with friction 0.
+    for (const float friction : {0.0f, 0.5f}) {
+        World w(WorldDesc{.gravity = {0.0f, 980.0f}});
+        w.create({.position = {0.0f, 100.0f}, .collider = Collider::aabb({200.0f, 10.0f})});
+        std::vector<EntityId> stack;
+        for (int k = 0; k < 4; ++k) {
+            stack.push_back(w.create({.kind = BodyKind::dynamic, .position = {0.0f, 80.0f - 20.0f * static_cast<float>(k)},
+                                      .collider = Collider::aabb({10.0f, 10.0f}), .friction = friction}));
+        }
+        for (int i = 0; i < 60; ++i) w.step(kDt);
+        ASSERT_EQ(w.contacts().size(), 4u) << friction;  // a resting stack: every contact carried
+        w.set_velocity(stack.back(), {kNan, 0.0f});
+        for (int i = 0; i < 3; ++i) w.step(kDt);
+        for (std::size_t k = 0; k + 1 < stack.size(); ++k) {
+            const EntityDesc* body = w.get(stack[k]);
+            EXPECT_TRUE(is_finite(body->position) && is_finite(body->velocity)) << friction << " box " << k;
+        }
+    }
+}
+
 TEST(ResolutionNan, a_nan_velocity_does_not_spread_through_a_static_floor) {
     World w(WorldDesc{.gravity = {0.0f, 980.0f}});
     const EntityId floor = w.create({.position = {0.0f, 20.0f}, .collider = Collider::aabb({200.0f, 10.0f})});

@@ -93,3 +93,51 @@ TEST(Step, StoppedBulletReportsItsHitOnce) {
     EXPECT_NEAR(world.get(id)->position.x, 98.0f, 1e-3f);
     EXPECT_EQ(world.get(id)->velocity, (Vec2{0.0f, 0.0f}));
 }
+
+// Found by review: a bullet stopped on a wall hit that wall again at t = 0 whatever way it was
+// fired, so it could never leave (nor could one made touching a surface). Fired away it
+// leaves; fired along the face it slides off; fired into it, it hits again.
+TEST(Step, ABulletOnASurfaceLeavesItWhenFiredAway) {
+    World world;
+    EntityDesc wall;
+    wall.position = {100.0f, 0.0f};
+    wall.collider = Collider::aabb({2.0f, 50.0f});
+    world.create(wall);
+    EntityDesc bullet;
+    bullet.kind = BodyKind::bullet;
+    bullet.velocity = {6000.0f, 0.0f};
+    bullet.on_hit = BulletResponse::stop;
+    const EntityId id = world.create(bullet);
+    for (int i = 0; i < 3; ++i) world.step(kDt);
+    ASSERT_NEAR(world.get(id)->position.x, 98.0f, 1e-3f);  // stopped on the face
+    const auto hits_in_steps = [&](int steps) {
+        int hits = 0;
+        for (int i = 0; i < steps; ++i) {
+            world.step(kDt);
+            for (const Event& e : world.events()) hits += e.type == EventType::bullet_hit ? 1 : 0;
+        }
+        return hits;
+    };
+    world.set_velocity(id, {-6000.0f, 0.0f});
+    EXPECT_EQ(hits_in_steps(2), 0);
+    EXPECT_NEAR(world.get(id)->position.x, 98.0f - 200.0f, 1e-3f);
+    world.set_velocity(id, {6000.0f, 0.0f});  // back into the wall: a hit, stopped on the face again
+    EXPECT_EQ(hits_in_steps(3), 1);
+    EXPECT_NEAR(world.get(id)->position.x, 98.0f, 1e-3f);
+    world.set_velocity(id, {0.0f, 6000.0f});  // along the face
+    EXPECT_EQ(hits_in_steps(1), 0);
+    EXPECT_NEAR(world.get(id)->position.y, 100.0f, 1e-3f);
+}
+
+// A handler that replaces or destroys the world it is called from is a programming error,
+// asserted (it was a use after free), like calling step() from it.
+TEST(StepDeathTest, AHandlerReplacingItsWorldIsAnAssertion) {
+    const auto run = [] {
+        World w(WorldDesc{.gravity = {0.0f, 980.0f}});
+        w.create({.position = {0.0f, 10.0f}, .collider = Collider::aabb({50.0f, 5.0f})});
+        w.create({.kind = BodyKind::dynamic, .collider = Collider::circle(5.0f)});
+        w.set_event_handler([](World& self, const Event&) { self = World{}; });
+        for (int i = 0; i < 30; ++i) w.step(kDt);
+    };
+    EXPECT_DEATH(run(), "a World replaced during its own step");
+}

@@ -76,6 +76,10 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
                 if (j == i || !blocks(slots[j].body) || !detail::may_meet(me, id, slots[j].body, id_of(j))) return;
                 const CastHit h = cast(from, to, placement(j).shape);
                 if (!h.hit || (j == last_hit && h.t == 0.0f)) return;
+                // On a surface and moving off it or along it (a bullet stopped on a wall and fired
+                // away, or made touching one): t = 0 there is where the path starts, not a path
+                // into the shape. (A start strictly inside has no normal, and is a hit.)
+                if (h.t == 0.0f && (h.normal.x != 0.0f || h.normal.y != 0.0f) && dot(to - from, h.normal) >= 0.0f) return;
                 if (best == n_slots || h.t < best_hit.t || (h.t == best_hit.t && j < best)) {
                     best = j;
                     best_hit = h;

@@ -271,7 +271,10 @@ void solve_velocity(BodyState* motion, VelocityContact& vc, bool shock, std::uin
     const Vec2 t = perp(n);
     const float vt = dot(sb.velocity - sa.velocity, t);
     const float limit = vc.friction * vc.normal_impulse;
-    const float total_t = std::clamp(vc.tangent_impulse - vt * inv_k, -limit, limit);
+    // (A NaN tangential speed, from a NaN velocity on the other body, changes no impulse: the
+    // clamp would pass the NaN on to this body, and through it to everything it touches.)
+    const float wanted = vc.tangent_impulse - vt * inv_k;
+    const float total_t = wanted == wanted ? std::clamp(wanted, -limit, limit) : vc.tangent_impulse;
     const float dt_impulse = total_t - vc.tangent_impulse;
     vc.tangent_impulse = total_t;
     if (dt_impulse != 0.0f) {

@@ -145,9 +145,15 @@ void World::Impl::remove(std::uint32_t index) {
 // ---------------------------------------------------------------------------------------
 
 World::World(const WorldDesc& desc) : impl_(std::make_unique<Impl>(desc)) {}
-World::~World() = default;
+// A world replaced or destroyed by its own event handler would pull the step's state out from
+// under the step (a use after free): a programming error, asserted like step() from a handler.
+World::~World() { JOSTLE_ASSERT(impl_ == nullptr || !impl_->in_step, "a World destroyed during its own step (from an event handler)"); }
 World::World(World&&) noexcept = default;
-World& World::operator=(World&&) noexcept = default;
+World& World::operator=(World&& other) noexcept {
+    JOSTLE_ASSERT(impl_ == nullptr || !impl_->in_step, "a World replaced during its own step (from an event handler)");
+    impl_ = std::move(other.impl_);
+    return *this;
+}
 
 EntityId World::create(const EntityDesc& desc) {
     std::uint32_t index;

@@ -26,8 +26,13 @@
 //   kinematic    moves by its velocity; pushes dynamic bodies, is never pushed.
 //   dynamic      moves by velocity and gravity; pushed out of everything it overlaps.
 //   bullet       a point moving along a segment each step (last to next position); hits the
-//                first collider on its path, at any speed. Never pushed, never pushes.
+//                first collider on its path, at any speed (a path that starts on a surface
+//                and leaves it or runs along it does not hit that surface). Never pushed,
+//                never pushes.
 //   trigger      moves by its velocity; reports trigger_enter/exit; never pushed or pushing.
+//                Triggers are tested once a step, where the narrowphase finds bodies: a fast
+//                circle that enters and leaves one within a single step reports nothing (its
+//                sweep stops only at what can push it), and bullets never meet triggers.
 //   Pairs that are never tested: static-static, bullet-anything (bullets only cast),
 //   trigger-trigger, and pairs filtered out by layer bits: A and B meet only when
 //   (A.layer & B.collides_with) != 0 and (B.layer & A.collides_with) != 0.
@@ -104,7 +109,10 @@
 //   The handler may create and destroy entities and change them. A created entity exists
 //   at once (a valid id; queries see it) and takes part from the next step. A destroyed one
 //   is gone at once; events already queued still carry its (now stale) id and its user data.
-//   Calling step() from the handler is a programming error (asserted).
+//   Calling step() from the handler is a programming error (asserted), and so is replacing or
+//   destroying the world it is called from (to restart a level, set a flag in the handler and
+//   replace the world after step() returns). A moved-from World may only be assigned to or
+//   destroyed.
 //
 // DETERMINISM
 //   No clocks, no unordered iteration, no uninitialised bytes: the same calls give the same
