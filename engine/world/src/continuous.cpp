@@ -195,6 +195,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
         JOSTLE_ASSERT(by_pairs == by_tree, "a fast circle's candidates are not the colliders the tree finds");
 #endif
     };
+    std::vector<std::pair<std::uint32_t, SweepHit>> crossed;  // triggers met by one stretch of a sweep
     for (const std::uint32_t i : fast_circles) {
         Slot& s = slots[i];
         if (!s.alive || !s.fast) continue;
@@ -213,7 +214,14 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
             const Aabb to_box = bounds(Circle{circle->center + motion, circle->radius});
             std::uint32_t best = n_slots;
             SweepHit best_hit;
+            crossed.clear();
             colliders_near(i, Aabb{min(from_box.min, to_box.min), max(from_box.max, to_box.max)}, [&](std::uint32_t j) {
+                // A trigger does not stop it, but one it meets on the way is in contact this
+                // step (the narrowphase sees the circle only where the step began).
+                if (j != i && slots[j].body.kind == BodyKind::trigger && detail::may_meet(s.body, id, slots[j].body, id_of(j))) {
+                    if (const SweepHit h = sweep(*circle, motion, placement(j).shape, Vec2{}); h.hit) crossed.push_back({j, h});
+                    return;
+                }
                 // Only what resolution could push it out of stops it (a body with no inverse
                 // mass passes through static ones, swept or not).
                 if (j == i || !blocks(slots[j].body) || !detail::may_meet(s.body, id, slots[j].body, id_of(j)) ||
@@ -227,6 +235,17 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
                     best_hit = h;
                 }
             });
+            // The triggers met before it stops (all of them when nothing stops it), in the
+            // order found (colliders_near may name one twice: the events keep one entry a pair).
+            for (const auto& [j, h] : crossed) {
+                if (best != n_slots && h.t > best_hit.t) continue;
+                const EntityId trigger = id_of(j);
+                if (i < j) {
+                    touching.push_back({id, trigger, h.point, h.normal, 0.0f, true, true});
+                } else {
+                    touching.push_back({trigger, id, h.point, -h.normal, 0.0f, true, false});
+                }
+            }
             if (best == n_slots) {
                 s.body.position += motion;
                 break;

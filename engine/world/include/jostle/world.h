@@ -30,9 +30,10 @@
 //                and leaves it or runs along it does not hit that surface). Never pushed,
 //                never pushes.
 //   trigger      moves by its velocity; reports trigger_enter/exit; never pushed or pushing.
-//                Triggers are tested once a step, where the narrowphase finds bodies: a fast
-//                circle that enters and leaves one within a single step reports nothing (its
-//                sweep stops only at what can push it), and bullets never meet triggers.
+//                A fast circle's sweep passes through triggers but puts those it meets in
+//                contact that step (trigger_enter, then trigger_exit the next step if it has
+//                left): one crossed within a single step is still reported. Bullets never
+//                meet triggers.
 //   Pairs that are never tested: static-static, bullet-anything (bullets only cast),
 //   trigger-trigger, and pairs filtered out by layer bits: A and B meet only when
 //   (A.layer & B.collides_with) != 0 and (B.layer & A.collides_with) != 0.
@@ -95,7 +96,7 @@
 // CONTACTS AND EVENTS
 //   A pair is in contact in a step when the narrowphase reports a hit (touching counts), a
 //   kept contact's gap is at most `slop` (so rounding does not make events flicker), or a
-//   fast circle's sweep stopped on it. contact_begin: in contact now, not in the previous
+//   fast circle's sweep stopped on it (or, for a trigger, met it on the way). contact_begin: in contact now, not in the previous
 //   step; contact_end: the reverse (normal, depth and point are the last ones seen). A body
 //   that changes kind (set()) between trigger and not ends its old contacts and begins new
 //   ones. A pair whose entity was destroyed is dropped without an end event. normal points
