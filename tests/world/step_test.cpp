@@ -177,3 +177,15 @@ TEST(Step, AFastCircleCrossingATriggerWithinOneStepEntersAndLeavesIt) {
         EXPECT_NEAR(world.get(circle)->position.x, 250.0f, 1e-3f);  // not slowed by it
     }
 }
+
+// A moved-from World may only be assigned to or destroyed: any other use is asserted (it was
+// a null dereference), and assigning it a world makes it usable again.
+TEST(StepDeathTest, AMovedFromWorldIsAnAssertionUntilAssigned) {
+    World w;
+    World taken = std::move(w);
+    EXPECT_DEATH((void)w.entity_count(), "a moved-from World used");
+    EXPECT_DEATH(w.step(kDt), "a moved-from World used");
+    w = World{};
+    EXPECT_EQ(w.entity_count(), 0u);
+    EXPECT_EQ(taken.entity_count(), 0u);
+}

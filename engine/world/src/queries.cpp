@@ -27,20 +27,20 @@ std::vector<EntityId> overlapping(const World::Impl& w, const Aabb& box, const S
 
 std::vector<EntityId> World::query_aabb(const Aabb& box, std::uint32_t layers) const {
     if (!detail::Broadphase::usable(box)) return {};
-    return overlapping(*impl_, box, box, layers);
+    return overlapping(impl(), box, box, layers);
 }
 
 std::vector<EntityId> World::query_point(Vec2 p, std::uint32_t layers) const {
     const Aabb box{p, p};
     if (!detail::Broadphase::usable(box)) return {};
     // A point as a zero-length segment: for masks it meets the pixel squares it touches.
-    return overlapping(*impl_, box, Segment{p, p}, layers);
+    return overlapping(impl(), box, Segment{p, p}, layers);
 }
 
 std::optional<RayHit> World::cast_segment(Vec2 from, Vec2 to, std::uint32_t layers, EntityId ignore) const {
     const Aabb box{min(from, to), max(from, to)};
     if (!detail::Broadphase::usable(box)) return std::nullopt;
-    const Impl& w = *impl_;
+    const Impl& w = impl();
     std::optional<RayHit> best;
     w.broadphase.query(box, [&](std::uint32_t j) {
         const detail::Slot& s = w.slots[j];
@@ -54,9 +54,9 @@ std::optional<RayHit> World::cast_segment(Vec2 from, Vec2 to, std::uint32_t laye
 }
 
 std::optional<Aabb> World::broadphase_bounds(EntityId id) const {
-    const detail::Slot* s = impl_->find(id);
+    const detail::Slot* s = impl().find(id);
     if (s == nullptr || s->proxy < 0) return std::nullopt;
-    return impl_->broadphase.fat_bounds(s->proxy);
+    return impl().broadphase.fat_bounds(s->proxy);
 }
 
 }  // namespace jostle

@@ -45,7 +45,7 @@ void hash_shape(Hasher& h, const Shape& shape, std::uint64_t mask_fingerprint) {
 }  // namespace
 
 std::uint64_t World::state_hash() const {
-    const Impl& w = *impl_;
+    const Impl& w = impl();
     Hasher h;
     h.u64(w.steps);
     h.u64(w.rng.state());

@@ -57,7 +57,7 @@ struct StepGuard {
 }  // namespace
 
 void World::step(float dt) {
-    Impl& w = *impl_;
+    Impl& w = impl();
     JOSTLE_ASSERT(!w.in_step, "World::step called during a step (from an event handler)");
     JOSTLE_ASSERT(std::isfinite(dt) && dt > 0.0f, "World::step needs dt > 0 and finite");
     StepGuard guard(w.in_step);

@@ -149,6 +149,12 @@ World::World(const WorldDesc& desc) : impl_(std::make_unique<Impl>(desc)) {}
 // under the step (a use after free): a programming error, asserted like step() from a handler.
 World::~World() { JOSTLE_ASSERT(impl_ == nullptr || !impl_->in_step, "a World destroyed during its own step (from an event handler)"); }
 World::World(World&&) noexcept = default;
+// Every member but assignment and destruction: a moved-from World has no state to use (a
+// programming error, asserted rather than a null dereference).
+World::Impl& World::impl() const {
+    JOSTLE_ASSERT(impl_ != nullptr, "a moved-from World used (it may only be assigned to or destroyed)");
+    return *impl_;
+}
 World& World::operator=(World&& other) noexcept {
     JOSTLE_ASSERT(impl_ == nullptr || !impl_->in_step, "a World replaced during its own step (from an event handler)");
     impl_ = std::move(other.impl_);
@@ -157,53 +163,53 @@ World& World::operator=(World&& other) noexcept {
 
 EntityId World::create(const EntityDesc& desc) {
     std::uint32_t index;
-    if (!impl_->free_slots.empty()) {
-        index = impl_->free_slots.back();
-        impl_->free_slots.pop_back();
+    if (!impl().free_slots.empty()) {
+        index = impl().free_slots.back();
+        impl().free_slots.pop_back();
     } else {
-        JOSTLE_ASSERT(impl_->slots.size() < 0xffffffffu, "too many entities");
-        index = static_cast<std::uint32_t>(impl_->slots.size());
-        impl_->slots.emplace_back();
-        impl_->placements.emplace_back();
+        JOSTLE_ASSERT(impl().slots.size() < 0xffffffffu, "too many entities");
+        index = static_cast<std::uint32_t>(impl().slots.size());
+        impl().slots.emplace_back();
+        impl().placements.emplace_back();
     }
-    detail::Slot& s = impl_->slots[index];
+    detail::Slot& s = impl().slots[index];
     // Generations count up from 1 and skip 0 (the null id) when they wrap.
     s.generation = (s.generation == 0xffffffffu) ? 1u : s.generation + 1u;
     s.alive = true;
     s.body = desc;
     s.mask_fingerprint = fingerprint(desc.collider);
     s.proxy = -1;
-    ++impl_->live;
-    impl_->turn(index);
-    impl_->sync_proxy(index);
+    ++impl().live;
+    impl().turn(index);
+    impl().sync_proxy(index);
     return {index, s.generation};
 }
 
 bool World::destroy(EntityId id) {
-    if (impl_->find(id) == nullptr) return false;
-    impl_->remove(id.index);
+    if (impl().find(id) == nullptr) return false;
+    impl().remove(id.index);
     return true;
 }
 
-bool World::alive(EntityId id) const { return impl_->find(id) != nullptr; }
+bool World::alive(EntityId id) const { return impl().find(id) != nullptr; }
 
 const EntityDesc* World::get(EntityId id) const {
-    const detail::Slot* s = impl_->find(id);
+    const detail::Slot* s = impl().find(id);
     return s ? &s->body : nullptr;
 }
 
 Shape World::shape_of(EntityId id) const {
-    if (impl_->find(id) == nullptr) return Collider{}.placed({NAN, NAN}, 0.0f);
-    return impl_->placed(id.index);
+    if (impl().find(id) == nullptr) return Collider{}.placed({NAN, NAN}, 0.0f);
+    return impl().placed(id.index);
 }
 
-std::size_t World::entity_count() const { return impl_->live; }
+std::size_t World::entity_count() const { return impl().live; }
 
 std::vector<EntityId> World::entities() const {
     std::vector<EntityId> out;
-    out.reserve(impl_->live);
-    for (std::uint32_t i = 0; i < impl_->slots.size(); ++i) {
-        if (impl_->slots[i].alive) out.push_back(impl_->id_of(i));
+    out.reserve(impl().live);
+    for (std::uint32_t i = 0; i < impl().slots.size(); ++i) {
+        if (impl().slots[i].alive) out.push_back(impl().id_of(i));
     }
     return out;
 }
@@ -223,40 +229,40 @@ bool change(World::Impl& impl, EntityId id, bool turns, F&& f) {
 }  // namespace
 
 bool World::set_position(EntityId id, Vec2 position) {
-    return change(*impl_, id, false, [&](detail::Slot& s) { s.body.position = position; });
+    return change(impl(), id, false, [&](detail::Slot& s) { s.body.position = position; });
 }
 bool World::set_angle(EntityId id, float angle) {
-    return change(*impl_, id, true, [&](detail::Slot& s) { s.body.angle = angle; });
+    return change(impl(), id, true, [&](detail::Slot& s) { s.body.angle = angle; });
 }
 bool World::set_velocity(EntityId id, Vec2 velocity) {
-    return change(*impl_, id, false, [&](detail::Slot& s) { s.body.velocity = velocity; });
+    return change(impl(), id, false, [&](detail::Slot& s) { s.body.velocity = velocity; });
 }
 bool World::set_angular_velocity(EntityId id, float angular_velocity) {
-    return change(*impl_, id, false, [&](detail::Slot& s) { s.body.angular_velocity = angular_velocity; });
+    return change(impl(), id, false, [&](detail::Slot& s) { s.body.angular_velocity = angular_velocity; });
 }
 bool World::set_collider(EntityId id, const Collider& collider) {
-    return change(*impl_, id, true, [&](detail::Slot& s) {
+    return change(impl(), id, true, [&](detail::Slot& s) {
         s.body.collider = collider;
         s.mask_fingerprint = fingerprint(collider);
     });
 }
 bool World::set_user_data(EntityId id, std::uint64_t user_data) {
-    return change(*impl_, id, false, [&](detail::Slot& s) { s.body.user_data = user_data; });
+    return change(impl(), id, false, [&](detail::Slot& s) { s.body.user_data = user_data; });
 }
 bool World::set(EntityId id, const EntityDesc& desc) {
-    return change(*impl_, id, true, [&](detail::Slot& s) {
+    return change(impl(), id, true, [&](detail::Slot& s) {
         s.body = desc;
         s.mask_fingerprint = fingerprint(desc.collider);
     });
 }
 
-std::span<const Event> World::events() const { return impl_->events; }
-std::span<const Contact> World::contacts() const { return impl_->contacts; }
-std::span<const SweptPath> World::swept_paths() const { return impl_->paths; }
-void World::set_event_handler(EventHandler handler) { impl_->handler = std::move(handler); }
-std::uint64_t World::step_count() const { return impl_->steps; }
-Rng& World::rng() { return impl_->rng; }
-const WorldDesc& World::desc() const { return impl_->desc; }
+std::span<const Event> World::events() const { return impl().events; }
+std::span<const Contact> World::contacts() const { return impl().contacts; }
+std::span<const SweptPath> World::swept_paths() const { return impl().paths; }
+void World::set_event_handler(EventHandler handler) { impl().handler = std::move(handler); }
+std::uint64_t World::step_count() const { return impl().steps; }
+Rng& World::rng() { return impl().rng; }
+const WorldDesc& World::desc() const { return impl().desc; }
 
 // ---------------------------------------------------------------------------------------
 // FixedStepper

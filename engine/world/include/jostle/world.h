@@ -113,7 +113,7 @@
 //   Calling step() from the handler is a programming error (asserted), and so is replacing or
 //   destroying the world it is called from (to restart a level, set a flag in the handler and
 //   replace the world after step() returns). A moved-from World may only be assigned to or
-//   destroyed.
+//   destroyed (any other use is asserted).
 //
 // DETERMINISM
 //   No clocks, no unordered iteration, no uninitialised bytes: the same calls give the same
@@ -347,6 +347,7 @@ public:
     struct Impl;  // the implementation's state (engine/world/src/internal.h)
 
 private:
+    Impl& impl() const;  // asserts the World was not moved from
     std::unique_ptr<Impl> impl_;
 };
 
