@@ -2,6 +2,8 @@
 // showed it (boxes snagging on tile seams, events after a kind change, sweep settings).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "jostle/world.h"
 
 using namespace jostle;
@@ -95,4 +97,23 @@ TEST(WorldRegression, ImmovableFastCircleBehavesLikeASlowOne) {
                                  .collider = Collider::circle(2.0f), .inverse_mass = 0.0f});
     for (int s = 0; s < 10; ++s) w.step(kDt);
     EXPECT_GT(w.get(c)->position.y, 60.0f);
+}
+
+// Found by tests/fuzz/world_fuzz.cpp: a bullet at rest that spins had its collider turned
+// each step but its broadphase proxy left where the collider had been, so the queries (which
+// go through the proxies) missed it where it now lay.
+TEST(WorldRegression, ASpinningBulletAtRestIsFoundWhereItsColliderIs) {
+    World w;
+    const EntityId bullet = w.create({.kind = BodyKind::bullet,
+                                      .angular_velocity = 3.0f,
+                                      .collider = Collider::segment({-20.0f, 0.0f}, {20.0f, 0.0f})});
+    for (int s = 0; s < 30; ++s) w.step(kDt);  // half a turn in all: about 1.5 rad
+    const float angle = w.get(bullet)->angle;
+    ASSERT_GT(angle, 1.4f);
+    const Vec2 tip{19.0f * std::cos(angle), 19.0f * std::sin(angle)};
+    EXPECT_EQ(w.query_point(tip), std::vector<EntityId>{bullet});
+    EXPECT_EQ(w.query_aabb({tip - Vec2{0.5f, 0.5f}, tip + Vec2{0.5f, 0.5f}}), std::vector<EntityId>{bullet});
+    const std::optional<RayHit> hit = w.cast_segment(tip + Vec2{-5.0f, 0.0f}, tip + Vec2{5.0f, 0.0f});
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_EQ(hit->id, bullet);
 }

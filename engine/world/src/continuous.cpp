@@ -57,8 +57,12 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
         const EntityId id = id_of(i);
         Vec2 from = slots[i].body.position;
         Vec2 velocity = slots[i].body.velocity;
-        // A bullet at rest (stopped on a hit, say) has no path, so it hits nothing again.
-        if (velocity.x == 0.0f && velocity.y == 0.0f) continue;
+        // A bullet at rest (stopped on a hit, say) has no path, so it hits nothing again. (Its
+        // proxy still follows its collider, which integrate may have turned.)
+        if (velocity.x == 0.0f && velocity.y == 0.0f) {
+            sync_proxy(i);
+            continue;
+        }
         float done = 0.0f;  // fraction of the step's path already travelled
         std::uint32_t last_hit = n_slots;  // none
         bool despawned = false;
