@@ -59,7 +59,7 @@ public:
     }
     // A coordinate of a collider: mostly half steps in [-30, 30), sometimes a special value,
     // but never a large finite one. (A mask deep inside a shape 1e5 px across is a legal
-    // query, but its MTD search takes about 20 ns a pixel of depth, 20 ms there: the runs
+    // query, but its MTD search takes about 0.2 us a pixel of depth, 20 ms there: the runs
     // would crawl.)
     float extent() {
         const std::uint8_t tag = byte();
