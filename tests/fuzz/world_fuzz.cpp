@@ -11,7 +11,9 @@
 // - query_aabb, query_point and cast_segment agree with the collision module asked of every
 //   entity's placed collider (the broadphase misses nothing and adds nothing);
 // - without a handler: the events are the difference between the contacts before and after
-//   the step (CONTACTS AND EVENTS), and name live entities (but despawned bullets).
+//   the step (CONTACTS AND EVENTS), name live entities (but despawned bullets) and carry
+//   their user data; static bodies stay put, kinematic bodies and triggers move by their
+//   velocity alone, and none of them has its velocity changed (BODY KINDS).
 // Inputs whose every value is finite and ordinary (no special value was read): every live
 // entity's position and velocity stay finite, and every contact has a unit normal and a finite
 // depth >= 0.
@@ -255,9 +257,14 @@ void check_events(const World& w, const std::vector<Contact>& before) {
     for (const Event& e : w.events()) {
         if (e.type == EventType::bullet_hit) {
             if (!w.alive(e.b)) fuzz_fail("bullet_hit names a dead target " + id_text(e.b));
+            if (!(e.fraction >= 0.0f && e.fraction <= 1.0f)) fuzz_fail("bullet_hit at fraction " + std::to_string(e.fraction));
+            if (e.b_user_data != w.get(e.b)->user_data) fuzz_fail("bullet_hit carries the wrong user data");
             continue;
         }
         if (!w.alive(e.a) || !w.alive(e.b)) fuzz_fail(std::string(name_of(e.type)) + " names a dead entity");
+        if (e.a_user_data != w.get(e.a)->user_data || e.b_user_data != w.get(e.b)->user_data) {
+            fuzz_fail(std::string(name_of(e.type)) + " carries the wrong user data");
+        }
         const auto pair = std::minmax(e.a, e.b);
         const bool begin = e.type == EventType::contact_begin || e.type == EventType::trigger_enter;
         (begin ? began : ended).insert(pair);
@@ -276,6 +283,35 @@ void check_events(const World& w, const std::vector<Contact>& before) {
     }
     for (const auto& pair : ended) {
         if (after.contains(pair) && !began.contains(pair)) fuzz_fail("an end event for a pair still in contact");
+    }
+}
+
+// What a step may do to the bodies resolution never moves: a static body stays where it is,
+// a kinematic body or a trigger moves by its velocity (position + dt * velocity, the step's
+// own expression), and none of them has its velocity changed. (Without a handler, which may
+// change them.)
+struct Before {
+    EntityId id;
+    EntityDesc desc;
+};
+
+void check_unpushed(const World& w, const std::vector<Before>& before, float dt) {
+    for (const Before& b : before) {
+        const EntityDesc* e = w.get(b.id);
+        if (e == nullptr) continue;
+        const BodyKind kind = b.desc.kind;
+        if (kind != BodyKind::static_body && kind != BodyKind::kinematic && kind != BodyKind::trigger) continue;
+        const Vec2 want = kind == BodyKind::static_body ? b.desc.position : b.desc.position + dt * b.desc.velocity;
+        const auto same = [](Vec2 x, Vec2 y) {
+            return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
+        };
+        if (!same(e->position, want) || !same(e->velocity, b.desc.velocity)) {
+            std::ostringstream out;
+            out << name_of(kind) << " " << id_text(b.id) << " went from (" << b.desc.position.x << ", " << b.desc.position.y
+                << ") at velocity (" << b.desc.velocity.x << ", " << b.desc.velocity.y << ") to (" << e->position.x << ", "
+                << e->position.y << ") at (" << e->velocity.x << ", " << e->velocity.y << "); resolution must not move it";
+            fuzz_fail(out.str());
+        }
     }
 }
 
@@ -353,11 +389,19 @@ std::vector<std::uint64_t> run(const std::uint8_t* data, std::size_t size, bool 
                 static constexpr float kDt[] = {1.0f / 60.0f, 1.0f / 60.0f, 1.0f / 120.0f, 1.0f / 30.0f, 0.1f, 1e-4f};
                 const float dt = kDt[in.byte() % std::size(kDt)];
                 const std::vector<Contact> before(w.contacts().begin(), w.contacts().end());
+                std::vector<Before> bodies;
+                if (check) {
+                    for (const EntityId id : w.entities()) bodies.push_back({id, *w.get(id)});
+                    if (bodies.size() != w.entity_count()) fuzz_fail("entities() and entity_count() disagree");
+                }
                 w.step(dt);
                 hashes.push_back(w.state_hash());
                 if (check) {
                     check_contacts(w, !in.special());
-                    if (!handler) check_events(w, before);
+                    if (!handler) {
+                        check_events(w, before);
+                        check_unpushed(w, bodies, dt);
+                    }
                     if (!in.special()) check_finite(w);
                 }
             }

@@ -2,7 +2,9 @@
 // showed it (boxes snagging on tile seams, events after a kind change, sweep settings).
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "jostle/world.h"
 
@@ -116,4 +118,28 @@ TEST(WorldRegression, ASpinningBulletAtRestIsFoundWhereItsColliderIs) {
     const std::optional<RayHit> hit = w.cast_segment(tip + Vec2{-5.0f, 0.0f}, tip + Vec2{5.0f, 0.0f});
     ASSERT_TRUE(hit.has_value());
     EXPECT_EQ(hit->id, bullet);
+}
+
+// Found by tests/fuzz/world_fuzz.cpp: a fast circle's sweep gave the body it stopped on
+// (inverse mass 0 to resolution) its share of the impulse, 0 * the impulse: a static body's
+// velocity field of -0 came back +0 (so its state hash changed), and an infinite impulse
+// would have made it NaN. Only bodies resolution can move take an impulse now.
+TEST(WorldRegression, AFastCircleStoppingOnAnImmovableBodyLeavesItsVelocityFieldAlone) {
+    for (const BodyKind kind : {BodyKind::static_body, BodyKind::kinematic}) {
+        World w;
+        const Vec2 field{-0.0f, kind == BodyKind::static_body ? -952.0f : -0.0f};
+        const EntityId wall =
+            w.create({.kind = kind, .position = {100.0f, 0.0f}, .velocity = field, .collider = Collider::aabb({5.0f, 50.0f})});
+        const EntityId ball = w.create({.kind = BodyKind::dynamic,
+                                        .position = {60.0f, 0.0f},
+                                        .velocity = {3000.0f, 0.0f},
+                                        .collider = Collider::circle(2.0f),
+                                        .restitution = 0.5f,
+                                        .gravity_scale = 0.0f});
+        w.step(kDt);
+        ASSERT_LT(w.get(ball)->velocity.x, 0.0f) << "the ball bounced off (" << name_of(kind) << ")";
+        const Vec2 v = w.get(wall)->velocity;
+        EXPECT_TRUE(std::signbit(v.x)) << name_of(kind) << ": " << v.x;
+        EXPECT_EQ(std::bit_cast<std::uint32_t>(v.y), std::bit_cast<std::uint32_t>(field.y)) << name_of(kind);
+    }
 }

@@ -38,14 +38,17 @@ void World::Impl::bounce(std::uint32_t a, std::uint32_t b, Vec2 n) {
                               std::isfinite(bb.restitution) ? bb.restitution : 0.0f);
     const float target = vn < -desc.restitution_threshold ? -std::fmax(e, 0.0f) * vn : 0.0f;
     const float jn = (target - vn) / k;
-    ba.velocity -= (ima * jn) * n;
-    bb.velocity += (imb * jn) * n;
+    // Only a body the contact can move takes the impulse: a static or kinematic one keeps its
+    // velocity field to the bit (0 * an impulse would turn its -0 into +0, or an infinity
+    // into NaN).
+    if (ima > 0.0f) ba.velocity -= (ima * jn) * n;
+    if (imb > 0.0f) bb.velocity += (imb * jn) * n;
     const Vec2 t = perp(n);
     const float mu = std::sqrt(std::fmax(ba.friction, 0.0f) * std::fmax(bb.friction, 0.0f));
     const float limit = std::isfinite(mu) ? mu * jn : 0.0f;
     const float jt = std::clamp(-dot(detail::contact_velocity(bb) - detail::contact_velocity(ba), t) / k, -limit, limit);
-    ba.velocity -= (ima * jt) * t;
-    bb.velocity += (imb * jt) * t;
+    if (ima > 0.0f) ba.velocity -= (ima * jt) * t;
+    if (imb > 0.0f) bb.velocity += (imb * jt) * t;
 }
 
 void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::vector<detail::Pair>& pairs) {
