@@ -7,7 +7,8 @@
 // Every input, whatever its values:
 // - no crash, assertion or sanitizer report;
 // - the same program run twice gives the same state hash after every step (DETERMINISM);
-// - contacts() are sorted by (a, b), a < b, both alive;
+// - contacts() are sorted by (a, b), a < b, both alive; a destroyed entity's id is stale
+//   everywhere and no id is handed out twice; the broadphase's bounds cover every collider;
 // - query_aabb, query_point and cast_segment agree with the collision module asked of every
 //   entity's placed collider (the broadphase misses nothing and adds nothing);
 // - without a handler: the events are the difference between the contacts before and after
@@ -250,6 +251,20 @@ void check_queries(const World& w, const Query& query) {
     }
 }
 
+// The broadphase's fat bounds of every entity cover its collider as placed now (a stale proxy
+// is what queries, bullets and sweeps would miss it by).
+void check_proxies(const World& w) {
+    for (const EntityId id : w.entities()) {
+        const Aabb tight = bounds(w.shape_of(id));
+        if (!within_limits(tight) || !(tight.min.x <= tight.max.x && tight.min.y <= tight.max.y)) continue;
+        const std::optional<Aabb> fat = w.broadphase_bounds(id);
+        if (!fat || fat->min.x > tight.min.x || fat->min.y > tight.min.y || fat->max.x < tight.max.x ||
+            fat->max.y < tight.max.y) {
+            fuzz_fail("the broadphase's bounds of " + ids_text(w, {id}) + " are " + (fat ? box_text(*fat) : "none"));
+        }
+    }
+}
+
 // The events of a step without a handler, against the contacts before and after it.
 void check_events(const World& w, const std::vector<Contact>& before) {
     const auto after = pairs_of(w.contacts());
@@ -354,7 +369,12 @@ std::vector<std::uint64_t> run(const std::uint8_t* data, std::size_t size, bool 
         switch (in.byte() % 10) {
             case 0:
             case 1:
-                if (w.entity_count() < kMaxEntities) ids.push_back(w.create(read_desc(in)));
+                if (w.entity_count() < kMaxEntities) {
+                    const EntityId id = w.create(read_desc(in));
+                    // A reused slot has a new generation: no id is ever handed out twice.
+                    if (check && std::find(ids.begin(), ids.end(), id) != ids.end()) fuzz_fail("id " + id_text(id) + " handed out twice");
+                    ids.push_back(id);
+                }
                 break;
             case 2: {
                 // A crowd: a row of equal bodies a few px apart (they overlap, stack, jam).
@@ -366,7 +386,15 @@ std::vector<std::uint64_t> run(const std::uint8_t* data, std::size_t size, bool 
                 }
                 break;
             }
-            case 3: w.destroy(pick()); break;
+            case 3: {
+                // A destroyed entity's id is stale everywhere (ENTITIES).
+                const EntityId id = pick();
+                if (w.destroy(id) && check &&
+                    (w.alive(id) || w.get(id) != nullptr || w.destroy(id) || w.set_position(id, {}) || w.set(id, {}))) {
+                    fuzz_fail("a destroyed entity's id " + id_text(id) + " is not stale");
+                }
+                break;
+            }
             case 4: {
                 const EntityId id = pick();
                 switch (in.byte() % 5) {
@@ -382,7 +410,10 @@ std::vector<std::uint64_t> run(const std::uint8_t* data, std::size_t size, bool 
             case 6: w.set(pick(), read_desc(in)); break;
             case 7: {
                 const Query query = read_query(in);
-                if (check) check_queries(w, query);
+                if (check) {
+                    check_proxies(w);
+                    check_queries(w, query);
+                }
                 break;
             }
             default: {
@@ -397,6 +428,7 @@ std::vector<std::uint64_t> run(const std::uint8_t* data, std::size_t size, bool 
                 w.step(dt);
                 hashes.push_back(w.state_hash());
                 if (check) {
+                    check_proxies(w);
                     check_contacts(w, !in.special());
                     if (!handler) {
                         check_events(w, before);
