@@ -9,6 +9,7 @@
 // - the same program run twice gives the same state hash after every step (DETERMINISM);
 // - contacts() are sorted by (a, b), a < b, both alive; a destroyed entity's id is stale
 //   everywhere and no id is handed out twice; the broadphase's bounds cover every collider;
+// - without a handler: every contact is a pair that may meet (kinds, layers, ignore);
 // - query_aabb, query_point and cast_segment agree with the collision module asked of every
 //   entity's placed collider (the broadphase misses nothing and adds nothing);
 // - without a handler: the events are the difference between the contacts before and after
@@ -251,6 +252,24 @@ void check_queries(const World& w, const Query& query) {
     }
 }
 
+// Every contact is a pair the MANUAL lets meet (BODY KINDS: never static-static, bullet-
+// anything or trigger-trigger; layer bits both ways; neither ignoring the other).
+void check_contact_pairs(const World& w) {
+    for (const Contact& c : w.contacts()) {
+        const EntityDesc& a = *w.get(c.a);
+        const EntityDesc& b = *w.get(c.b);
+        const auto is = [&](BodyKind k) { return a.kind == k || b.kind == k; };
+        const bool both_static = a.kind == BodyKind::static_body && b.kind == BodyKind::static_body;
+        const bool both_triggers = a.kind == BodyKind::trigger && b.kind == BodyKind::trigger;
+        const bool layers = (a.layer & b.collides_with) != 0 && (b.layer & a.collides_with) != 0;
+        const bool ignored = a.ignore == c.b || b.ignore == c.a;
+        if (both_static || both_triggers || is(BodyKind::bullet) || !layers || ignored) {
+            fuzz_fail("contact " + ids_text(w, {c.a, c.b}) + " is a pair that never meets");
+        }
+        if (c.trigger != is(BodyKind::trigger)) fuzz_fail("contact " + ids_text(w, {c.a, c.b}) + " has the wrong trigger flag");
+    }
+}
+
 // The broadphase's fat bounds of every entity cover its collider as placed now (a stale proxy
 // is what queries, bullets and sweeps would miss it by).
 void check_proxies(const World& w) {
@@ -370,7 +389,9 @@ std::vector<std::uint64_t> run(const std::uint8_t* data, std::size_t size, bool 
             case 0:
             case 1:
                 if (w.entity_count() < kMaxEntities) {
-                    const EntityId id = w.create(read_desc(in));
+                    EntityDesc d = read_desc(in);
+                    if (d.user_data & 0x40) d.ignore = pick();
+                    const EntityId id = w.create(d);
                     // A reused slot has a new generation: no id is ever handed out twice.
                     if (check && std::find(ids.begin(), ids.end(), id) != ids.end()) fuzz_fail("id " + id_text(id) + " handed out twice");
                     ids.push_back(id);
@@ -431,6 +452,7 @@ std::vector<std::uint64_t> run(const std::uint8_t* data, std::size_t size, bool 
                     check_proxies(w);
                     check_contacts(w, !in.special());
                     if (!handler) {
+                        check_contact_pairs(w);
                         check_events(w, before);
                         check_unpushed(w, bodies, dt);
                     }
