@@ -55,28 +55,22 @@ public:
     // Mostly half steps in [-60, 60) (bodies a few px across touch, stack and coincide);
     // sometimes a special value, which marks the program as not ordinary.
     float number() {
-        const std::uint8_t tag = byte();
-        if (tag < 0xf0 || !specials_) return static_cast<float>(static_cast<int>(tag) - 120) / 2.0f;
-        special_ = true;
-        static constexpr float special[] = {std::numeric_limits<float>::quiet_NaN(), INFINITY, -INFINITY, FLT_MAX,
-                                            -FLT_MAX, 1e30f, -1e30f, std::numeric_limits<float>::denorm_min(),
-                                            -0.0f, 1e5f, -1e5f, 1e6f, 1e-30f, 3e38f, 16777216.0f, 1e-7f};
-        return special[tag - 0xf0];
+        static constexpr std::array<float, 16> kSpecial = {
+            std::numeric_limits<float>::quiet_NaN(), INFINITY, -INFINITY, FLT_MAX, -FLT_MAX, 1e30f, -1e30f,
+            std::numeric_limits<float>::denorm_min(), -0.0f, 1e5f, -1e5f, 1e6f, 1e-30f, 3e38f, 16777216.0f, 1e-7f};
+        return value(2.0f, kSpecial);
     }
-    // A coordinate of a collider: mostly half steps in [-30, 30), sometimes a special value,
-    // but never a large finite one. (A mask deep inside a shape 1e5 px across is a legal
+    // A coordinate of a collider: mostly quarter steps in [-30, 30), sometimes a special
+    // value, but never a large finite one. (A mask deep inside a shape 1e5 px across is a legal
     // query, but its MTD search takes about 0.2 us a pixel of depth, 20 ms there: the runs
     // would crawl.)
     float extent() {
-        const std::uint8_t tag = byte();
-        if (tag < 0xf0 || !specials_) return static_cast<float>(static_cast<int>(tag) - 120) / 4.0f;
-        special_ = true;
-        static constexpr float special[] = {std::numeric_limits<float>::quiet_NaN(), INFINITY, -INFINITY, FLT_MAX,
-                                            -FLT_MAX, 1e30f, -1e30f, std::numeric_limits<float>::denorm_min(),
-                                            -0.0f, 0.0f, 1e-30f, -1e-30f, 1e-7f, -1e-7f, 3e38f, 1e20f};
-        return special[tag - 0xf0];
+        static constexpr std::array<float, 16> kSpecial = {
+            std::numeric_limits<float>::quiet_NaN(), INFINITY, -INFINITY, FLT_MAX, -FLT_MAX, 1e30f, -1e30f,
+            std::numeric_limits<float>::denorm_min(), -0.0f, 0.0f, 1e-30f, -1e-30f, 1e-7f, -1e-7f, 3e38f, 1e20f};
+        return value(4.0f, kSpecial);
     }
-    // A size: mostly 0 .. 15 px in quarter steps (0 included: degenerate shapes).
+    // A size: mostly 0 .. 15 px in eighth steps (0 included: degenerate shapes).
     float size() {
         const float v = extent();
         return std::isfinite(v) && std::fabs(v) <= 30.0f ? std::fabs(v) / 2.0f : v;
@@ -84,6 +78,15 @@ public:
     bool special() const { return special_; }
 
 private:
+    // (tag - 120) / divisor for most tags; the top 16 pick a special value when this program
+    // may read them.
+    float value(float divisor, const std::array<float, 16>& special) {
+        const std::uint8_t tag = byte();
+        if (tag < 0xf0 || !specials_) return static_cast<float>(static_cast<int>(tag) - 120) / divisor;
+        special_ = true;
+        return special[tag - 0xf0];
+    }
+
     const std::uint8_t* data_;
     std::size_t size_;
     std::size_t at_ = 0;
