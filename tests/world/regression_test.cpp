@@ -143,3 +143,27 @@ TEST(WorldRegression, AFastCircleStoppingOnAnImmovableBodyLeavesItsVelocityField
         EXPECT_EQ(std::bit_cast<std::uint32_t>(v.y), std::bit_cast<std::uint32_t>(field.y)) << name_of(kind);
     }
 }
+
+// Found by tests/fuzz/world_fuzz.cpp: a fast circle of inverse mass 0 crossing more bodies in
+// a step than max_sweep_hits lost the rest of its motion, as a movable one does (stopping is
+// safe for those). Resolution never moves it, so it now goes all the way, as a slow one would,
+// and what it meets is hit on the way.
+TEST(WorldRegression, AnImmovableFastCircleCrossingACrowdKeepsItsMotion) {
+    World w;
+    const EntityId ball = w.create({.kind = BodyKind::dynamic,
+                                    .velocity = {6000.0f, 0.0f},  // 100 px a step
+                                    .collider = Collider::circle(2.0f),
+                                    .inverse_mass = 0.0f,
+                                    .gravity_scale = 0.0f});
+    std::vector<EntityId> crowd;
+    for (int k = 1; k <= 8; ++k) {
+        crowd.push_back(w.create({.kind = BodyKind::dynamic,
+                                  .position = {10.0f * static_cast<float>(k), 0.0f},
+                                  .collider = Collider::aabb({1.0f, 1.0f}),
+                                  .gravity_scale = 0.0f}));
+    }
+    w.step(kDt);
+    EXPECT_NEAR(w.get(ball)->position.x, 100.0f, 1e-3f);
+    EXPECT_EQ(w.get(ball)->velocity.x, 6000.0f);
+    EXPECT_GT(w.get(crowd.front())->velocity.x, 0.0f) << "the first one it met was hit";
+}

@@ -215,6 +215,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
             const Vec2 motion = (remaining * dt) * s.body.velocity;
             if (circle == nullptr || !is_finite(motion)) {
                 s.body.position += motion;
+                remaining = 0.0f;
                 break;
             }
             const Aabb from_box = bounds(*circle);
@@ -255,6 +256,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
             }
             if (best == n_slots) {
                 s.body.position += motion;
+                remaining = 0.0f;
                 break;
             }
             s.body.position += best_hit.t * motion;
@@ -267,7 +269,12 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
             }
             bounce(i, best, best_hit.normal);
         }
-        // Motion left after max_sweep_hits contacts is dropped: stopping is safe, guessing is not.
+        // Motion left after max_sweep_hits contacts is dropped: stopping is safe, guessing is
+        // not. But a circle resolution cannot move (inverse mass 0) goes all the way, as a
+        // slow one would: its contacts push the others, never it.
+        if (remaining > 0.0f && detail::resolution_inverse_mass(s.body) == 0.0f) {
+            s.body.position += (remaining * dt) * s.body.velocity;
+        }
         const Shape end = placed(i);
         const float radius = std::holds_alternative<Circle>(end) ? std::get<Circle>(end).radius : 0.0f;
         const Vec2 offset = std::holds_alternative<Circle>(end) ? std::get<Circle>(end).center - s.body.position : Vec2{};
