@@ -9,13 +9,14 @@
 // - the same program run twice gives the same state hash after every step (DETERMINISM);
 // - contacts() are sorted by (a, b), a < b, both alive; a destroyed entity's id is stale
 //   everywhere and no id is handed out twice; the broadphase's bounds cover every collider;
-// - without a handler: every contact is a pair that may meet (kinds, layers, ignore);
-// - query_aabb, query_point and cast_segment agree with the collision module asked of every
-//   entity's placed collider (the broadphase misses nothing and adds nothing);
-// - without a handler: the events are the difference between the contacts before and after
-//   the step (CONTACTS AND EVENTS), name live entities (but despawned bullets) and carry
-//   their user data; static bodies stay put, kinematic bodies and triggers move by their
-//   velocity alone, and none of them has its velocity changed (BODY KINDS).
+// - within the LIMITS, query_aabb, query_point and cast_segment agree with the collision
+//   module asked of every entity's placed collider (the broadphase misses nothing, adds nothing).
+// Without a handler, also:
+// - every contact is a pair that may meet (BODY KINDS, layer bits, ignore);
+// - the events are the difference between the contacts before and after the step (CONTACTS
+//   AND EVENTS), name live entities (but despawned bullets) and carry their user data;
+// - static bodies stay put; kinematic bodies, triggers and dynamic bodies of inverse mass 0
+//   move by their velocity (and gravity) alone, and nothing else changes their velocity.
 // Inputs whose every value is finite and ordinary (no special value was read): every live
 // entity's position and velocity stay finite, and every contact has a unit normal and a finite
 // depth >= 0.
@@ -323,10 +324,11 @@ void check_events(const World& w, const std::vector<Contact>& before) {
     }
 }
 
-// What a step may do to the bodies resolution never moves: a static body stays where it is,
-// a kinematic body or a trigger moves by its velocity (position + dt * velocity, the step's
-// own expression), and none of them has its velocity changed. (Without a handler, which may
-// change them.)
+// What a step may do to the bodies resolution never moves: a static body stays where it is;
+// a kinematic body, a trigger or a dynamic body of inverse mass 0 moves by its velocity
+// (position + dt * velocity, the step's own expression; the last after gravity, and swept in
+// pieces when it is a fast circle), and nothing else changes their velocity. (Without a
+// handler, which may change them.)
 struct Before {
     EntityId id;
     EntityDesc desc;
