@@ -209,6 +209,11 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
         const EntityId id = id_of(i);
         const Vec2 start = s.body.position;
         float remaining = 1.0f;  // fraction of the step still to move
+        // A circle resolution cannot move (inverse mass 0) would meet the body it just hit
+        // again at t = 0 (its bounce changed that body's velocity, not its place): it goes on
+        // to the next body instead.
+        const bool immovable = detail::resolution_inverse_mass(s.body) == 0.0f;
+        std::uint32_t last_hit = n_slots;  // none
         for (int hits = 0; hits < std::max(desc.max_sweep_hits, 1) && remaining > 0.0f; ++hits) {
             const Shape shape = placed(i);
             const Circle* circle = std::get_if<Circle>(&shape);
@@ -237,7 +242,7 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
                     return;
                 }
                 const SweepHit h = sweep(*circle, motion, placement(j).shape, Vec2{});
-                if (!h.hit) return;
+                if (!h.hit || (immovable && j == last_hit && h.t == 0.0f)) return;
                 if (best == n_slots || h.t < best_hit.t || (h.t == best_hit.t && j < best)) {
                     best = j;
                     best_hit = h;
@@ -268,11 +273,12 @@ void World::Impl::sweeps(float dt, std::vector<Contact>& touching, const std::ve
                 touching.push_back({other, id, best_hit.point, -best_hit.normal, 0.0f, false});
             }
             bounce(i, best, best_hit.normal);
+            last_hit = best;
         }
         // Motion left after max_sweep_hits contacts is dropped: stopping is safe, guessing is
         // not. But a circle resolution cannot move (inverse mass 0) goes all the way, as a
         // slow one would: its contacts push the others, never it.
-        if (remaining > 0.0f && detail::resolution_inverse_mass(s.body) == 0.0f) {
+        if (remaining > 0.0f && immovable) {
             s.body.position += (remaining * dt) * s.body.velocity;
         }
         const Shape end = placed(i);

@@ -89,7 +89,8 @@
 //                stop at the time of first contact, take the contact's velocity response,
 //                and continue with the rest of the step (up to max_sweep_hits contacts;
 //                motion left after them is dropped, but a circle of inverse mass 0, which
-//                resolution never moves, goes all the way).
+//                resolution never moves, goes all the way, and goes on past a body it has
+//                just hit instead of meeting it again where it stopped).
 //   events       contact_end, contact_begin, trigger_exit, trigger_enter, each kind sorted by
 //                (a, b); bullet_hit events come first, in the order they happened. The event
 //                handler (if any) is called for each, in order, then events() holds them
