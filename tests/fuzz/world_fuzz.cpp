@@ -141,12 +141,6 @@ EntityDesc read_desc(Reader& in) {
     return d;
 }
 
-struct Key {
-    EntityId a, b;
-    bool trigger = false;
-    auto operator<=>(const Key&) const = default;
-};
-
 std::set<std::pair<EntityId, EntityId>> pairs_of(std::span<const Contact> contacts) {
     std::set<std::pair<EntityId, EntityId>> out;
     for (const Contact& c : contacts) out.insert({c.a, c.b});
@@ -174,7 +168,7 @@ void check_contacts(const World& w, bool ordinary) {
     }
 }
 
-// The queries against the collision module asked of every live entity, in id order.
+// Text for the failure messages.
 std::string box_text(const Aabb& b) {
     std::ostringstream out;
     out << "(" << b.min.x << ", " << b.min.y << ") - (" << b.max.x << ", " << b.max.y << ")";
@@ -186,6 +180,10 @@ std::string ids_text(const World& w, const std::vector<EntityId>& ids) {
     out << "[";
     for (const EntityId id : ids) {
         const EntityDesc* e = w.get(id);
+        if (e == nullptr) {
+            out << " " << id_text(id) << " (stale)";
+            continue;
+        }
         const Aabb b = bounds(w.shape_of(id));
         out << " " << id_text(id) << " " << name_of(e->kind) << " " << name_of(e->collider.kind()) << " at ("
             << e->position.x << ", " << e->position.y << ") bounds " << box_text(b);
@@ -218,6 +216,7 @@ bool within_limits(const Aabb& b) {
            std::fabs(b.max.y) <= kLimit;
 }
 
+// The queries against the collision module asked of every live entity, in id order.
 void check_queries(const World& w, const Query& query) {
     const Vec2 p = query.p, q = query.q;
     const Aabb box{min(p, q), max(p, q)};
