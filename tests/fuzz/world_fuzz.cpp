@@ -208,12 +208,11 @@ Query read_query(Reader& in) {
     return query;
 }
 
-// Within the LIMITS (|x|, |y| <= 1e5) the collision module is exact; beyond them its answers
-// are defined but not exact, so there the query may answer either way.
+// Within the LIMITS (|x|, |y| <= kMaxCoordinate) the collision module is exact; beyond them
+// its answers are defined but not exact, so there the query may answer either way.
 bool within_limits(const Aabb& b) {
-    constexpr float kLimit = 1e5f;
-    return std::fabs(b.min.x) <= kLimit && std::fabs(b.min.y) <= kLimit && std::fabs(b.max.x) <= kLimit &&
-           std::fabs(b.max.y) <= kLimit;
+    return std::fabs(b.min.x) <= kMaxCoordinate && std::fabs(b.min.y) <= kMaxCoordinate &&
+           std::fabs(b.max.x) <= kMaxCoordinate && std::fabs(b.max.y) <= kMaxCoordinate;
 }
 
 // The queries against the collision module asked of every live entity, in id order.
