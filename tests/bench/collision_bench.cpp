@@ -29,6 +29,10 @@
 //   BM_Mask{Overlaps,First,Count}/<side>/vs_bytes     a byte-per-pixel mask (one uint8 per pixel,
 //                            a plain loop over the overlap, written below) vs the same jostle
 //                            query (measured in both groups, so each ratio reads directly).
+//   BM_MaskMtdDeep/<box|obb|hexagon|circle>/<depth>/plain_scan   collide(mask, shape) for a
+//                            32 px round mask about <depth> px inside a large shape, with the
+//                            MTD search's shortcuts off (the column scan alone) vs on (jostle):
+//                            no target, it shows what the shortcuts do to a deeply buried mask.
 //
 // FAIR INPUTS
 //   Each side gets the same seeded pairs in its own native form, built once per benchmark
@@ -70,6 +74,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdarg>
@@ -1125,6 +1130,68 @@ void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query,
 }
 
 // ---------------------------------------------------------------------------------------
+// A mask buried deep in a large convex shape: the MTD search with and without its shortcuts
+// ---------------------------------------------------------------------------------------
+
+enum class DeepShape { box, obb, hexagon, circle };
+
+// Eight placements per shape: a 32 px round mask whose centre lies `depth` px inside the
+// shape's nearest face, at seeded angles and offsets.
+struct DeepPool {
+    Mask mask{32, 32};
+    std::vector<Shape> shapes;
+};
+
+DeepPool make_deep_pool(DeepShape kind, int depth) {
+    DeepPool p;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            if ((x - 15.5) * (x - 15.5) + (y - 15.5) * (y - 15.5) <= 16.0 * 16.0) p.mask.set(x, y, true);
+    Rng rng(static_cast<std::uint64_t>(depth) * 4 + static_cast<std::uint64_t>(kind));
+    const float r = static_cast<float>(depth);
+    for (int k = 0; k < 8; ++k) {
+        // The mask stays at (0, 0); its centre is (16, 16). The shape's centre is moved off it.
+        const Vec2 c{16.0f + rng.uniform(-0.3f, 0.3f) * r, 16.0f + rng.uniform(-0.3f, 0.3f) * r};
+        const float reach = r + std::max(std::abs(c.x - 16.0f), std::abs(c.y - 16.0f));  // nearest face >= r away
+        switch (kind) {
+            case DeepShape::box: p.shapes.push_back(Aabb{{c.x - reach, c.y - 1.3f * reach}, {c.x + 1.2f * reach, c.y + reach}}); break;
+            case DeepShape::obb: p.shapes.push_back(Obb{c, {1.5f * reach, 1.5f * reach}, rng.uniform(-3.1f, 3.1f)}); break;
+            case DeepShape::hexagon: {
+                std::array<Vec2, 6> pts;
+                const float a0 = rng.uniform(0.0f, 1.0f);
+                for (std::size_t i = 0; i < 6; ++i)
+                    pts[i] = {c.x + 1.3f * reach * std::cos(a0 + 1.0471976f * static_cast<float>(i)),
+                              c.y + 1.3f * reach * std::sin(a0 + 1.0471976f * static_cast<float>(i))};
+                p.shapes.push_back(*make_polygon(pts));
+                break;
+            }
+            case DeepShape::circle: p.shapes.push_back(Circle{c, reach}); break;
+        }
+    }
+    return p;
+}
+
+void bm_mask_mtd_deep(benchmark::State& state, DeepShape kind, int depth, bool shortcuts) {
+    const DeepPool p = make_deep_pool(kind, depth);
+    const Shape mask = PlacedMask{&p.mask, 0, 0};
+    std::vector<Manifold> out(p.shapes.size());
+    detail::use_mask_search_shortcuts(shortcuts);
+    time_pool(state, out, 1, [&](std::size_t i, Manifold& m) { m = collide(mask, p.shapes[i]); });
+    // The other side's answers, bit for bit.
+    detail::use_mask_search_shortcuts(!shortcuts);
+    Checker c;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const Manifold other = collide(mask, p.shapes[i]);
+        if (!out[i].hit || other.hit != out[i].hit || std::bit_cast<std::uint32_t>(other.depth) != std::bit_cast<std::uint32_t>(out[i].depth) ||
+            std::bit_cast<std::uint64_t>(other.normal) != std::bit_cast<std::uint64_t>(out[i].normal))
+            c.fail(i, fmt("depth %.9g normal (%.9g, %.9g) against %.9g (%.9g, %.9g)", out[i].depth, out[i].normal.x,
+                          out[i].normal.y, other.depth, other.normal.x, other.normal.y));
+    }
+    detail::use_mask_search_shortcuts(true);
+    c.report(state, false);
+}
+
+// ---------------------------------------------------------------------------------------
 // Registration
 // ---------------------------------------------------------------------------------------
 
@@ -1179,6 +1246,19 @@ void register_all(Inputs& inputs) {
                 add(group + "jostle", false,
                     [=, &inputs](benchmark::State& s) { bm_mask(s, inputs, side, query, MaskSide::jostle); });
             }
+        }
+    }
+    struct Deep {
+        const char* name;
+        DeepShape kind;
+    };
+    for (const Deep d : {Deep{"box", DeepShape::box}, Deep{"obb", DeepShape::obb}, Deep{"hexagon", DeepShape::hexagon},
+                         Deep{"circle", DeepShape::circle}}) {
+        for (const int depth : {100, 1000}) {
+            const std::string base = std::string("BM_MaskMtdDeep/") + d.name + "/" + std::to_string(depth) + "/";
+            const DeepShape kind = d.kind;
+            add(base + "plain_scan", true, [=](benchmark::State& s) { bm_mask_mtd_deep(s, kind, depth, false); });
+            add(base + "jostle", false, [=](benchmark::State& s) { bm_mask_mtd_deep(s, kind, depth, true); });
         }
     }
 }

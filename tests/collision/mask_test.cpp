@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -14,6 +15,8 @@
 #include <string>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "jostle/collision.h"
@@ -940,6 +943,111 @@ TEST(MaskShapes, DeepInsideLargeShapes) {
     const Polygon tri = triangle({-20, -30}, {40, 5}, {-25, 35});
     const auto want_tri = brute_mtd(small, 0, 0, pixel_test(tri), (-20.0 + 40 - 25) / 3, (-30.0 + 5 + 35) / 3);
     expect_translation(collide(q, tri), (*want_tri)[0], (*want_tri)[1]);
+}
+
+// A push longer than 16 px is searched with the convex regions' seeds and skipped columns
+// (search_mtd's hooks): the same answer as the plain column scan, bit for bit, and as the
+// exhaustive search where that is affordable.
+Shape random_deep_shape(Rng& rng, Vec2 c, float size) {
+    const float hx = rng.uniform(0.3f, 1.0f) * size, hy = rng.uniform(0.3f, 1.0f) * size;
+    switch (uniform_int(rng, 0, 3)) {
+        case 0: return Aabb{{c.x - hx, c.y - hy}, {c.x + hx, c.y + hy}};
+        case 1: {
+            // Axis-aligned, nearly so, and any angle: vertical faces are the bound's special case.
+            const int k = uniform_int(rng, 0, 3);
+            const float angle = k == 0 ? 0.0f : k == 1 ? 1.5707964f : k == 2 ? rng.uniform(-1e-6f, 1e-6f) : rng.uniform(-3.2f, 3.2f);
+            return Obb{c, {hx, hy}, angle};
+        }
+        case 2: return Circle{c, hx};
+        default: {
+            std::vector<Vec2> pts;
+            const int n = uniform_int(rng, 3, 9);
+            for (int i = 0; i < n; ++i) {
+                const float a = rng.uniform(0.0f, 6.2831853f);
+                pts.push_back({c.x + hx * std::cos(a), c.y + hy * std::sin(a)});
+            }
+            if (const auto poly = hull_polygon(pts)) return *poly;
+            return Circle{c, hx};
+        }
+    }
+}
+
+TEST(MaskShapes, SearchShortcutsGiveThePlainScansAnswer) {
+    Rng rng(77);
+    int deep = 0;
+    for (int n = 0; n < 1500; ++n) {
+        const Mask m = random_mask(rng, uniform_int(rng, 1, 40), uniform_int(rng, 1, 40), 20);
+        const float size = std::pow(10.0f, rng.uniform(1.2f, 2.7f));  // 16 to 500 px
+        const Vec2 c{rng.uniform(-size, size), rng.uniform(-size, size)};
+        const Shape shape = random_deep_shape(rng, c, size);
+        // Mostly inside the shape, some across its boundary.
+        const float spread = n % 3 == 0 ? 1.2f : 0.5f;
+        const PlacedMask p{&m, static_cast<int>(std::floor(c.x + rng.uniform(-spread, spread) * size)),
+                           static_cast<int>(std::floor(c.y + rng.uniform(-spread, spread) * size))};
+        const Manifold fast = collide(Shape{p}, shape);
+        detail::use_mask_search_shortcuts(false);
+        const Manifold plain = collide(Shape{p}, shape);
+        detail::use_mask_search_shortcuts(true);
+        ASSERT_EQ(fast.hit, plain.hit) << "case " << n;
+        // Bit for bit: the state hashes read these bytes.
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(fast.depth), std::bit_cast<std::uint32_t>(plain.depth)) << "case " << n;
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(fast.normal), std::bit_cast<std::uint64_t>(plain.normal)) << "case " << n;
+        if (fast.depth > 16.0f) ++deep;
+    }
+    EXPECT_GT(deep, 600);  // most cases take the shortcuts
+}
+
+TEST(MaskShapes, SearchShortcutsMatchTheExhaustiveSearch) {
+    Rng rng(78);
+    int deep = 0;
+    for (int n = 0; n < 120; ++n) {
+        const Mask m = random_mask(rng, uniform_int(rng, 1, 6), uniform_int(rng, 1, 6), 30);
+        const Vec2 c{grid(rng, -4, 4), grid(rng, -4, 4)};
+        const Shape shape = random_deep_shape(rng, c, rng.uniform(28.0f, 36.0f));
+        const PlacedMask p{&m, uniform_int(rng, -6, 2), uniform_int(rng, -6, 2)};
+        const Manifold got = collide(Shape{p}, shape);
+        double bcx = 0.0, bcy = 0.0;  // B's centre, as the tie rule reads it
+        PixelTest test;
+        std::visit(
+            [&](const auto& b) {
+                using B = std::decay_t<decltype(b)>;
+                if constexpr (std::is_same_v<B, Aabb>) {
+                    test = pixel_test(b);
+                    bcx = 0.5 * (static_cast<double>(b.min.x) + b.max.x);
+                    bcy = 0.5 * (static_cast<double>(b.min.y) + b.max.y);
+                } else if constexpr (std::is_same_v<B, Circle>) {
+                    test = pixel_test(b);
+                    bcx = b.center.x;
+                    bcy = b.center.y;
+                } else if constexpr (std::is_same_v<B, Obb>) {
+                    // The module's own pixel rule (one pixel as a mask): what is checked here is
+                    // the search, which RotatedObbMtdIsShortestAndFrees also reads this way.
+                    test = [&b](double px, double py) {
+                        static const Mask one = rows_of({"#"});
+                        return count_overlap(PlacedMask{&one, static_cast<int>(px), static_cast<int>(py)}, Shape{b}) > 0;
+                    };
+                    bcx = b.center.x;
+                    bcy = b.center.y;
+                } else if constexpr (std::is_same_v<B, Polygon>) {
+                    test = pixel_test(b);
+                    for (const Vec2 v : b.points()) {
+                        bcx += v.x;
+                        bcy += v.y;
+                    }
+                    bcx /= b.count();
+                    bcy /= b.count();
+                }
+            },
+            shape);
+        if (!test) continue;
+        const auto want = brute_mtd(m, p.x, p.y, test, bcx, bcy);
+        ASSERT_EQ(got.hit, want.has_value()) << "case " << n;
+        if (!want) continue;
+        SCOPED_TRACE("case " + std::to_string(n));
+        expect_translation(got, (*want)[0], (*want)[1]);
+        if (got.depth > 12.0f) ++deep;
+    }
+    EXPECT_GT(deep, 40);
 }
 
 TEST(MaskShapes, RotatedObbMtdIsShortestAndFrees) {

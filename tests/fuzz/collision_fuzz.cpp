@@ -5,7 +5,8 @@
 //
 // Every input: results are defined (collision.h, TOLERANCES): a miss is all zeros, a hit has a
 // finite depth >= 0 and a unit normal, t in [0, 1]; a shape with a NaN or infinite coordinate
-// hits nothing; overlaps() agrees with collide().hit.
+// hits nothing; overlaps() agrees with collide().hit; a mask's MTD against a convex shape is the
+// same with and without the search's shortcuts.
 // Finite, well-formed, non-mask inputs within the manual's LIMITS (|x|, |y| <= 1e5): the
 // module agrees with the double-precision oracle (tests/collision/oracle.h, shared with the
 // property tests): the MTD separates, casts never miss a crossed shape, sweeps never tunnel.
@@ -378,6 +379,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!slow_mask_mtd) {
         collide_properties(a, b);
         contact_set_properties(a, b);
+        // A mask against a convex shape: the search's shortcuts give the plain scan's answer.
+        const bool a_is_mask = std::holds_alternative<PlacedMask>(a), b_is_mask = std::holds_alternative<PlacedMask>(b);
+        if (a_is_mask != b_is_mask && !std::holds_alternative<Segment>(a_is_mask ? b : a)) {
+            const Manifold fast = collide(a, b);
+            detail::use_mask_search_shortcuts(false);
+            const Manifold plain = collide(a, b);
+            detail::use_mask_search_shortcuts(true);
+            if (fast.hit != plain.hit || std::bit_cast<std::uint32_t>(fast.depth) != std::bit_cast<std::uint32_t>(plain.depth) ||
+                std::bit_cast<std::uint64_t>(fast.normal) != std::bit_cast<std::uint64_t>(plain.normal)) {
+                fuzz_fail("mask MTD with the search's shortcuts " + f2s(fast.depth) + " " + v2s(fast.normal) +
+                          ", plain scan " + f2s(plain.depth) + " " + v2s(plain.normal) + " for " + test::describe(a) +
+                          " and " + test::describe(b));
+            }
+        }
     }
 
     const Aabb box = bounds(a);

@@ -3,6 +3,7 @@
 // by the pixel rule; the nearest point of a mask; and the lecture's loop, corrected, in reference::.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -985,6 +986,18 @@ struct AxisPush {
 // being certainly blocked. The bound is a free pure-axis push, so the search always ends at or
 // before it; work grows with the answer, not with the bound. No allocation.
 // Problem: bool blocked(i64 dx, i64 dy, int dir, i64& jump); Dot dot(i64 dx, i64 dy).
+//
+// The column scan alone still costs time linear in the answer's length (a mask deep in a large
+// box tests every column out to it). A problem over a convex region offers two more hooks:
+//   seed(consider)        free translations found from the region's geometry, so that best
+//                         starts near the answer;
+//   min_free_dy(d0, d1)   a lower bound on |dy| for every free translation with dx in [d0, d1];
+//                         a run of columns that bound puts strictly beyond best is skipped.
+// Neither can change the answer: a seed is one more free candidate for ranks_before, and a
+// skipped column holds only longer ones. Runs start one column long and double after each
+// skip; after a failed try the next waits twice as long, so a region that never allows a
+// skip (a disc around the mask: every column's answer lies on the same ring) pays for a few
+// tries only.
 template <class Problem>
 Manifold search_mtd(const Problem& p, AxisPush bound) {
     using Dot = decltype(p.dot(0, 0));
@@ -999,9 +1012,37 @@ Manifold search_mtd(const Problem& p, AxisPush bound) {
             found = true;
         }
     };
+    constexpr bool kBounded = requires { p.min_free_dy(i64{0}, i64{0}); };
+    const auto seed = [&](i64 dx, i64 dy) {
+        if (dx * dx + dy * dy <= best.r2) consider(dx, dy);
+    };
+    if constexpr (requires { p.seed(seed); }) p.seed(seed);
+    struct Runs {  // per side: columns skipped up to skip_to; the next try's length and column
+        i64 skip_to = -1;
+        i64 span = 1;
+        i64 next_try = 0;
+        i64 wait = 1;
+    };
+    std::array<Runs, 2> runs;
     for (i64 m = 0; m * m <= best.r2; ++m) {
         for (int side = 0; side < (m == 0 ? 1 : 2); ++side) {
             const i64 dx = side == 0 ? m : -m;
+            if constexpr (kBounded) {
+                Runs& run = runs[static_cast<std::size_t>(side)];
+                if (m <= run.skip_to) continue;
+                if (m >= run.next_try) {
+                    const i64 last = m + run.span - 1;
+                    // Capped past the bound: nothing longer than it can be best.
+                    const i64 dy = std::min(side == 0 ? p.min_free_dy(m, last) : p.min_free_dy(-last, -m), limit + 1);
+                    if (m * m + dy * dy > best.r2) {
+                        run = {last, run.span * 2, last + 1, 1};
+                        continue;
+                    }
+                    run.span = 1;
+                    run.next_try = m + run.wait;
+                    run.wait *= 2;
+                }
+            }
             i64 jump = 1;
             if (!p.blocked(dx, 0, +1, jump)) {
                 consider(dx, 0);
@@ -1115,6 +1156,19 @@ struct ConvexRegion : SolidRegionPlace {
         return true;
     }
     bool meets(double left, double top) const { return contains(left + 0.5, top + 0.5); }
+    // For the MTD search's seeds: through each face, the unit normal and the distance along it
+    // that takes every point of the rectangle `pts` out of the region.
+    template <class F>
+    void exits(const Bounds& pts, F&& f) const {
+        for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
+            const double len = std::hypot(nx[i], ny[i]);
+            if (!(len > 0.0)) continue;
+            // The rectangle's corner farthest behind the face: the least n.p.
+            const double least = (nx[i] >= 0.0 ? nx[i] * pts.min_x : nx[i] * pts.max_x) +
+                                 (ny[i] >= 0.0 ? ny[i] * pts.min_y : ny[i] * pts.max_y);
+            f(nx[i] / len, ny[i] / len, (c[i] - least) / len);
+        }
+    }
     // A plane with nx == 0 decides the row exactly as contains() does; the others give the
     // range approximately, and the caller settles its ends with meets().
     bool row_range(double top, double& lo, double& hi) const {
@@ -1155,6 +1209,17 @@ struct DiscRegion : SolidRegionPlace {
         const double dx = left + 0.5 - cx;
         const double dy = top + 0.5 - cy;
         return dx * dx + dy * dy <= r * r;
+    }
+    // For the MTD search's seeds: away from the centre through the rectangle's middle, far
+    // enough that every point of the rectangle `pts` leaves the disc.
+    template <class F>
+    void exits(const Bounds& pts, F&& f) const {
+        const double mx = 0.5 * (pts.min_x + pts.max_x);
+        const double my = 0.5 * (pts.min_y + pts.max_y);
+        const double half_diagonal = 0.5 * std::hypot(pts.max_x - pts.min_x, pts.max_y - pts.min_y);
+        const double d = std::hypot(mx - cx, my - cy);
+        if (d > 0.0) f((mx - cx) / d, (my - cy) / d, r + half_diagonal - d);
+        else f(-1.0, 0.0, r + half_diagonal);
     }
     // Empty exactly when meets() is false for the whole row: dx^2 + dy^2 >= dy^2 > r^2.
     bool row_range(double top, double& lo, double& hi) const {
@@ -1433,6 +1498,17 @@ int count_in(const PlacedMask& a, const std::optional<R>& r) {
     return n;
 }
 
+// Pushes past this length are outside the coordinate limits (|x|, |y| <= 1e5 plus a mask):
+// there the answer is the bound below (a pure-axis push clearing the shape's bounds, at most
+// two pixels long), without a search.
+constexpr double kMaxSearchedPush = 1 << 20;
+
+// Pushes up to this length are searched column by column alone; past it, a convex region's
+// search also takes seeds and skips columns (search_mtd), which costs a few tests to set up.
+constexpr double kProbedPush = 16;
+// Whether it does (detail::use_mask_search_shortcuts: tests compare it with the plain scan).
+std::atomic<bool> search_shortcuts{true};
+
 // Mask vs a fixed region: the mask moves.
 template <class R>
 struct RegionProblem {
@@ -1491,12 +1567,88 @@ struct RegionProblem {
         }
         return jump;
     }
-};
 
-// Pushes past this length are outside the coordinate limits (|x|, |y| <= 1e5 plus a mask):
-// there the answer is the bound below (a pure-axis push clearing the shape's bounds, at most
-// two pixels long), without a search.
-constexpr double kMaxSearchedPush = 1 << 20;
+    // For search_mtd's hooks (solid regions): set pixels, in own coordinates, whose vertical
+    // chords bound the push: the top and the bottom set pixel of five columns across the set
+    // pixels' box. None: no seeds, no bound.
+    struct Probe {
+        int i = 0;
+        int j = 0;
+    };
+    std::array<Probe, 10> probes{};
+    int probe_count = 0;
+
+    void add_probes() {
+        const int w = box.x1 - box.x0;
+        for (const int i : {box.x0, box.x0 + w / 4, box.x0 + w / 2, box.x0 + 3 * w / 4, box.x1}) {
+            int top = -1;
+            int bottom = -1;
+            for (int j = box.y0; j <= box.y1; ++j)
+                if (m->get(i, j)) {
+                    if (top < 0) top = j;
+                    bottom = j;
+                }
+            if (top < 0) continue;
+            probes[static_cast<std::size_t>(probe_count++)] = {i, top};
+            probes[static_cast<std::size_t>(probe_count++)] = {i, bottom};
+        }
+    }
+
+    // Each face's (or the disc's) exit, a pixel longer than needed: rounding the translation to
+    // whole pixels moves it less than 0.71 px. Offered only if free.
+    template <class F>
+    void seed(F&& consider) const
+        requires R::kSolid
+    {
+        if (probe_count == 0) return;
+        const Bounds centres{static_cast<double>(x + box.x0) + 0.5, static_cast<double>(y + box.y0) + 0.5,
+                             static_cast<double>(x + box.x1) + 0.5, static_cast<double>(y + box.y1) + 0.5};
+        r->exits(centres, [&](double ux, double uy, double t) {
+            if (!(t > 0.0 && t <= kMaxSearchedPush)) return;
+            const i64 dx = std::llround(ux * (t + 1.0));
+            const i64 dy = std::llround(uy * (t + 1.0));
+            i64 jump = 1;
+            if (!blocked(dx, dy, +1, jump)) consider(dx, dy);
+        });
+    }
+
+    // A lower bound on |dy| for a free translation with dx in [d0, d1]. A probe whose centre
+    // lies inside the region, by a margin, at d0 and at d1 lies inside at every column between
+    // (the region is convex), and moved along its column by less than the distance to the
+    // chord's end it stays inside. That distance is a concave function of the column (the
+    // chord's top is convex, its bottom concave), so its least over the run is at d0 or d1.
+    // Every probe inside must leave: moving up by more than the largest such distance up, or
+    // down by more than the largest down. The margin covers rounding in the chord's ends.
+    i64 min_free_dy(i64 d0, i64 d1) const
+        requires R::kSolid
+    {
+        constexpr double kMargin = 1e-3;
+        double up = 0.0;
+        double down = 0.0;
+        for (int k = 0; k < probe_count; ++k) {
+            const Probe& q = probes[static_cast<std::size_t>(k)];
+            const double qy = static_cast<double>(y + q.j) + 0.5;
+            double need_up = std::numeric_limits<double>::infinity();
+            double need_down = need_up;
+            bool inside = true;
+            for (const i64 d : {d0, d1}) {
+                const double px = static_cast<double>(x + d + q.i) + 0.5;
+                double lo = 0.0;
+                double hi = 0.0;
+                r->column_range(px, lo, hi);
+                inside = inside && px >= r->bounds.min_x + kMargin && px <= r->bounds.max_x - kMargin &&
+                         qy >= lo + kMargin && qy <= hi - kMargin;
+                need_up = std::min(need_up, qy - lo);
+                need_down = std::min(need_down, hi - qy);
+            }
+            if (!inside) continue;
+            up = std::max(up, need_up);
+            down = std::max(down, need_down);
+        }
+        const double need = std::min(up, down);
+        return need > kMargin ? static_cast<i64>(std::floor(std::min(need - kMargin, 1e12))) + 1 : 0;
+    }
+};
 
 template <class R>
 Manifold collide_region(const PlacedMask& a, const std::optional<R>& r) {
@@ -1533,6 +1685,8 @@ Manifold collide_region(const PlacedMask& a, const std::optional<R>& r) {
     p.box = box;
     p.cx = static_cast<double>(a.x) + 0.5 * m.width() - r->centre_x;
     p.cy = static_cast<double>(a.y) + 0.5 * m.height() - r->centre_y;
+    if constexpr (R::kSolid)
+        if (length > kProbedPush && search_shortcuts.load(std::memory_order_relaxed)) p.add_probes();
     return search_mtd(p, AxisPush{static_cast<i64>(bx), static_cast<i64>(by)});
 }
 
@@ -1562,6 +1716,10 @@ std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b, Mas
     return first_with(a, b, usable_kernel(k));
 }
 int count_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k) { return count_with(a, b, usable_kernel(k)); }
+bool use_mask_search_shortcuts(bool on) {
+    search_shortcuts.store(on, std::memory_order_relaxed);
+    return on;
+}
 }  // namespace detail
 
 Manifold collide(const PlacedMask& a, const PlacedMask& b) {

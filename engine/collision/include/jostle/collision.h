@@ -115,9 +115,13 @@
 //   corner of interior angle theta, a cast or sweep is placed to within the coordinates'
 //   rounding / sin theta: at a sliver's tip of 1e-5 rad, with coordinates near 30, about a
 //   pixel (make_polygon rejects only turns within 1e-6 rad of straight). A mask's MTD takes
-//   time in proportion to the push it finds (about 0.2 ms per 1,000 px on a 2020s CPU): a
-//   20 x 20 mask at the centre of a circle of radius 1e5 px takes about 20 ms, and the world
-//   tests a mask contact again at each position pass.
+//   time that grows with the push it finds. Against an Aabb, Obb or Polygon a push longer
+//   than 16 px starts from the faces' exits and skips the columns that cannot hold it (a
+//   32 px round mask 8,700 px deep in a hexagon: 0.9 ms on a 2020s CPU; 8,000 px deep in a
+//   box: 0.01 ms). Against a circle or another mask every column out to the push can hold
+//   it: about 1 ms per 1,000 px (that mask 8,000 px deep in a circle: 11 ms; a 20 x 20 one at
+//   the centre of a circle of radius 1e5 px: 7 ms). The world tests a mask contact again at
+//   each position pass.
 // ==================================================================================
 #pragma once
 
@@ -509,6 +513,10 @@ int count_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k);
 // time; same answers bit for bit). For tests: switch that path off and on again (on only
 // where the CPU has AVX2); returns whether it is now on. Not thread-safe: tests only.
 bool use_avx2_paths(bool on);
+// The MTD of a mask against a convex shape, when the push is longer than 16 px, starts from
+// the faces' own exits and skips runs of columns that cannot hold the answer (same answers).
+// For tests: switch that off (the plain column scan) and on again. Not thread-safe: tests only.
+bool use_mask_search_shortcuts(bool on);
 }  // namespace detail
 
 // ---------------------------------------------------------------------------------------
