@@ -115,7 +115,14 @@ Shape read_shape(Reader& r, const Frame& f, Mask& mask_storage) {
                 const float rx = f.length(r), ry = f.length(r), turn = r.number();
                 for (int i = 0; i < n; ++i) {
                     const float a = turn + 6.2831853f * static_cast<float>(i) / static_cast<float>(n);
-                    pts[static_cast<std::size_t>(i)] = c + Vec2{rx * std::cos(a), ry * std::sin(a)};
+                    pts[static_cast<std::size_t>(i)] = (mode & 0x40 ? Vec2{} : c) + Vec2{rx * std::cos(a), ry * std::sin(a)};
+                }
+                // Or made about the origin, then turned and moved in float as the world places its
+                // colliders (the rounded vertices may be a rounding off convex).
+                if (mode & 0x40) {
+                    const Polygon local =
+                        make_polygon(std::span<const Vec2>(pts.data(), static_cast<std::size_t>(n))).value_or(Polygon{});
+                    return local.transformed({c, Rot::from_angle(r.number())});
                 }
             }
             return make_polygon(std::span<const Vec2>(pts.data(), static_cast<std::size_t>(n))).value_or(Polygon{});

@@ -1143,11 +1143,13 @@ struct ConvexRegion : SolidRegionPlace {
     std::array<double, kMaxPolygonVertices> nx{};
     std::array<double, kMaxPolygonVertices> ny{};
     std::array<double, kMaxPolygonVertices> c{};
+    std::array<double, kMaxPolygonVertices> len{};  // |(nx, ny)|, for distances from the faces
 
     void add(double px, double py, double pc) {
         nx[static_cast<std::size_t>(count)] = px;
         ny[static_cast<std::size_t>(count)] = py;
         c[static_cast<std::size_t>(count)] = pc;
+        len[static_cast<std::size_t>(count)] = std::hypot(px, py);
         ++count;
     }
     bool contains(double px, double py) const {
@@ -1156,17 +1158,24 @@ struct ConvexRegion : SolidRegionPlace {
         return true;
     }
     bool meets(double left, double top) const { return contains(left + 0.5, top + 0.5); }
+    // Inside by at least `margin` from every face's line (for the MTD search's bound). Tested
+    // against the faces themselves, not the vertices' bounds: a polygon moved or turned in
+    // float may have a vertex a rounding outside the faces' intersection, which is the region.
+    bool inside_by(double px, double py, double margin) const {
+        for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i)
+            if (!(nx[i] * px + ny[i] * py <= c[i] - margin * len[i])) return false;
+        return true;
+    }
     // For the MTD search's seeds: through each face, the unit normal and the distance along it
     // that takes every point of the rectangle `pts` out of the region.
     template <class F>
     void exits(const Bounds& pts, F&& f) const {
         for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
-            const double len = std::hypot(nx[i], ny[i]);
-            if (!(len > 0.0)) continue;
+            if (!(len[i] > 0.0)) continue;
             // The rectangle's corner farthest behind the face: the least n.p.
             const double least = (nx[i] >= 0.0 ? nx[i] * pts.min_x : nx[i] * pts.max_x) +
                                  (ny[i] >= 0.0 ? ny[i] * pts.min_y : ny[i] * pts.max_y);
-            f(nx[i] / len, ny[i] / len, (c[i] - least) / len);
+            f(nx[i] / len[i], ny[i] / len[i], (c[i] - least) / len[i]);
         }
     }
     // A plane with nx == 0 decides the row exactly as contains() does; the others give the
@@ -1209,6 +1218,11 @@ struct DiscRegion : SolidRegionPlace {
         const double dx = left + 0.5 - cx;
         const double dy = top + 0.5 - cy;
         return dx * dx + dy * dy <= r * r;
+    }
+    // Inside by at least `margin` from the circle (for the MTD search's bound).
+    bool inside_by(double px, double py, double margin) const {
+        const double room = r - margin;
+        return room > 0.0 && (px - cx) * (px - cx) + (py - cy) * (py - cy) <= room * room;
     }
     // For the MTD search's seeds: away from the centre through the rectangle's middle, far
     // enough that every point of the rectangle `pts` leaves the disc.
@@ -1614,11 +1628,13 @@ struct RegionProblem {
 
     // A lower bound on |dy| for a free translation with dx in [d0, d1]. A probe whose centre
     // lies inside the region, by a margin, at d0 and at d1 lies inside at every column between
-    // (the region is convex), and moved along its column by less than the distance to the
-    // chord's end it stays inside. That distance is a concave function of the column (the
-    // chord's top is convex, its bottom concave), so its least over the run is at d0 or d1.
-    // Every probe inside must leave: moving up by more than the largest such distance up, or
-    // down by more than the largest down. The margin covers rounding in the chord's ends.
+    // (the region, an intersection of half-planes or a disc, is convex), and moved along its
+    // column by less than the distance to the chord's end it stays inside. That distance is a
+    // concave function of the column (the chord's top is convex, its bottom concave), so its
+    // least over the run is at d0 or d1. Every probe inside must leave: moving up by more than
+    // the largest such distance up, or down by more than the largest down. The margin covers
+    // rounding in the chord's ends; inside by it from every face, a probe's column is one
+    // where the faces that are not vertical (those column_range reads) bound the chord.
     i64 min_free_dy(i64 d0, i64 d1) const
         requires R::kSolid
     {
@@ -1633,11 +1649,11 @@ struct RegionProblem {
             bool inside = true;
             for (const i64 d : {d0, d1}) {
                 const double px = static_cast<double>(x + d + q.i) + 0.5;
+                inside = r->inside_by(px, qy, kMargin);
+                if (!inside) break;
                 double lo = 0.0;
                 double hi = 0.0;
                 r->column_range(px, lo, hi);
-                inside = inside && px >= r->bounds.min_x + kMargin && px <= r->bounds.max_x - kMargin &&
-                         qy >= lo + kMargin && qy <= hi - kMargin;
                 need_up = std::min(need_up, qy - lo);
                 need_down = std::min(need_down, hi - qy);
             }

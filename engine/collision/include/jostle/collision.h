@@ -115,13 +115,13 @@
 //   corner of interior angle theta, a cast or sweep is placed to within the coordinates'
 //   rounding / sin theta: at a sliver's tip of 1e-5 rad, with coordinates near 30, about a
 //   pixel (make_polygon rejects only turns within 1e-6 rad of straight). A mask's MTD takes
-//   time that grows with the push it finds. Against an Aabb, Obb or Polygon a push longer
-//   than 16 px starts from the faces' exits and skips the columns that cannot hold it (a
-//   32 px round mask 8,700 px deep in a hexagon: 0.9 ms on a 2020s CPU; 8,000 px deep in a
-//   box: 0.01 ms). Against a circle or another mask every column out to the push can hold
-//   it: about 1 ms per 1,000 px (that mask 8,000 px deep in a circle: 11 ms; a 20 x 20 one at
-//   the centre of a circle of radius 1e5 px: 7 ms). The world tests a mask contact again at
-//   each position pass.
+//   time that grows with the push it finds. Against a convex shape a push longer than 16 px
+//   starts from the faces' exits and skips the columns that cannot hold it (a 32 px round
+//   mask 8,700 px deep in a hexagon: 0.9 ms on a 2020s CPU; 8,000 px deep in a box: 0.01
+//   ms). Around a mask at a circle's centre every column out to the push can hold it, and
+//   against another mask there is no shortcut: about 1 ms per 1,000 px (that mask 8,000 px
+//   deep at a circle's centre: 11 ms; a 20 x 20 one at the centre of a circle of radius 1e5
+//   px: 7 ms). The world tests a mask contact again at each position pass.
 // ==================================================================================
 #pragma once
 
@@ -201,8 +201,10 @@ public:
     std::span<const Vec2> normals() const { return {normals_.data(), static_cast<std::size_t>(count_)}; }
 
     // The polygon translated by d, or rotated by xf.q then translated by xf.p (a rigid motion
-    // keeps convexity, winding and unit normals). A result with a non-finite coordinate is
-    // the empty polygon.
+    // keeps convexity, winding and unit normals, up to rounding: each vertex is rounded to
+    // float, so far from the origin a turn smaller than that rounding can come out flat or
+    // reversed; the pixel-mask queries decide a pixel by the edges' half-planes, whatever the
+    // vertices). A result with a non-finite coordinate is the empty polygon.
     Polygon moved(Vec2 d) const;
     // out = moved(d), writing only the vertices in use when out already has this count
     // (every Polygon keeps its unused slots zero, so the result is the same object).
