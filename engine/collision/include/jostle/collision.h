@@ -189,9 +189,10 @@ struct PolygonAccess;  // the collision module's own builders (box polygons, swe
 
 // A convex polygon. Only make_polygon (which validates) and the module's own conversions
 // (to_polygon, moved, transformed) make one, so a Polygon is always well formed: 3..16
-// finite vertices with cross(e[i], e[i+1]) > 0 (clockwise on screen, y down) and
-// normals()[i] the outward unit normal of edge points()[i] -> points()[i + 1]; or empty
-// (count() == 0, the default), which hits nothing. Queries therefore never re-validate it.
+// finite vertices with cross(e[i], e[i+1]) > 0 (clockwise on screen, y down; after a move
+// or turn, up to each vertex's float rounding: see moved) and normals()[i] the outward unit
+// normal of edge points()[i] -> points()[i + 1]; or empty (count() == 0, the default), which
+// hits nothing. Queries therefore never re-validate it.
 class Polygon {
 public:
     Polygon() = default;  // empty
