@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include "jostle/collision.h"
 #include "jostle/core/rng.h"
@@ -505,4 +506,28 @@ TEST(Regression, AShallowSlidePastAVertexStopsAtFirstContact) {
     const SweepHit h = sweep(Circle{{18.0141792f, -5.67022753f}, 0.001f}, {-18.434288f, -6.19848919f}, p);
     ASSERT_TRUE(h.hit);
     EXPECT_NEAR(h.t, 0.430308f, 1e-4f);
+}
+
+TEST(Regression, ACircleOnAPolygonCollapsedToAPointIsPushedFromThePoint) {
+    // Fuzz (collision target): an 11-gon 1e-3 px across, turned and moved in float to
+    // (99936, 99936), where floats are 1/128 px apart, collapsed to one point. The nearest-vertex
+    // search picks the first of eleven tied vertices, whose cone does not hold the direction;
+    // only its two neighbours were tried, so a face normal 73 degrees off came back and the MTD
+    // left 1.2 px of overlap. Every tied vertex is tried now: one of them holds the direction.
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 11; ++i) {
+        const float a = 6.2831853f * static_cast<float>(i) / 11.0f;
+        pts.push_back({5e-4f * std::cos(a), 5e-4f * std::sin(a)});
+    }
+    const Polygon tiny = make_polygon(pts).value().transformed({{99936, 99936}, Rot::from_angle(0.7f)});
+    for (const Vec2 v : tiny.points()) ASSERT_EQ(v, (Vec2{99936, 99936}));
+    const Circle ball{{99936, 99938}, 10};
+    const Manifold m = collide(ball, tiny);
+    ASSERT_TRUE(m.hit);
+    EXPECT_EQ(m.depth, 8.0f);
+    EXPECT_EQ(m.normal, (Vec2{0, -1}));  // from the ball toward the point
+    const Manifold r = collide(tiny, ball);
+    ASSERT_TRUE(r.hit);
+    EXPECT_EQ(r.depth, 8.0f);
+    EXPECT_EQ(r.normal, (Vec2{0, 1}));
 }

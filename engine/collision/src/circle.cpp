@@ -237,16 +237,25 @@ inline Manifold polygon_circle_hit(const Circle& b, float depth, Float4 normal) 
 // The contact through a neighbour of `vertex`, the nearest vertex, when the direction from
 // `vertex` lies outside its cone: two vertices that float cannot tell apart (across a face
 // shorter than their coordinates' rounding: fuzz, a face 1.8e-41 px long) tie in the search,
-// the first wins, and the direction lies in the other's cone; that vertex is the contact. No
-// hit when neither neighbour ties and holds its direction. Out of line: the common path keeps
-// its registers (inlined, it made collide(Polygon, Circle) 12-25% slower).
+// the first wins, and the direction lies in the other's cone; that vertex is the contact. The
+// tied vertices are walked forward, then backward, as far as they tie: a polygon turned and
+// moved in float can collapse to one point (smaller than the float spacing where it lies),
+// and then the vertex whose cone holds the direction may be any of them. No hit when none
+// does. Out of line: the common path keeps its registers (inlined, it made
+// collide(Polygon, Circle) 12-25% slower).
 [[gnu::noinline, gnu::cold]] Manifold tied_neighbour_contact(const Polygon& a, const Circle& b, int vertex, float dist2,
                                                              Vec2 fallback) {
     const int count = a.count();
-    for (const int other : {detail::next_index(vertex, count), detail::prev_index(vertex, count)}) {
+    for (int step = 1, other = vertex, walked = 0; walked < 2 * (count - 1); ++walked) {
+        other = step > 0 ? detail::next_index(other, count) : detail::prev_index(other, count);
         const Vec2 d = b.center - a.points()[other];
         const float d2 = d.x * d.x + d.y * d.y;
-        if (!(d2 <= dist2)) continue;
+        if (!(d2 <= dist2) || other == vertex) {  // the forward run ends: walk back from vertex
+            if (step < 0) break;
+            step = -1;
+            other = vertex;
+            continue;
+        }
         const float len = detail::sqrt_nonneg(d2);
         // The direction as polygon_circle_answer forms it for the nearest vertex.
         Vec2 u = fallback;
