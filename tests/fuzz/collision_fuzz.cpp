@@ -194,13 +194,19 @@ bool all_finite(const Shape& s) {
 
 // Within the manual's LIMITS and well formed (the oracle's domain): no mask, no empty polygon,
 // min <= max, half extents and radius >= 0, and every coordinate (angles too) within 1e5. A
-// polygon turned and moved in float must still pass make_polygon: where rounding has made it
-// flat or reversed at a vertex (tried without this rule: a thin 11-gon at 1e5 px, not convex at
-// a vertex, gave a depth 0.38 px from the oracle's), its normals no longer describe its
-// vertices exactly, and the manual promises only a defined result (Polygon::moved; LIMITS).
+// polygon turned and moved in float must still pass make_polygon or have collapsed to one
+// point (smaller than the float spacing where it lies: the oracle's point, and the module's);
+// where rounding has made it flat or reversed at a vertex (tried without this rule: a thin
+// 11-gon at 1e5 px, not convex at a vertex, gave a depth 0.38 px from the oracle's), its
+// normals no longer describe its vertices, and the manual promises only a defined result
+// (Polygon::moved; LIMITS).
+bool collapsed_to_a_point(const Polygon& p) {
+    return std::all_of(p.points().begin(), p.points().end(), [&](Vec2 v) { return v == p.points()[0]; });
+}
 bool in_limits(const Shape& s) {
     if (std::holds_alternative<PlacedMask>(s)) return false;
-    if (const auto* p = std::get_if<Polygon>(&s); p && (p->count() == 0 || !make_polygon(p->points()).has_value()))
+    if (const auto* p = std::get_if<Polygon>(&s);
+        p && (p->count() == 0 || !(make_polygon(p->points()).has_value() || collapsed_to_a_point(*p))))
         return false;
     if (const auto* a = std::get_if<Aabb>(&s); a && !(a->min.x <= a->max.x && a->min.y <= a->max.y)) return false;
     if (const auto* o = std::get_if<Obb>(&s); o && !(o->half.x >= 0 && o->half.y >= 0)) return false;
