@@ -1143,13 +1143,11 @@ struct ConvexRegion : SolidRegionPlace {
     std::array<double, kMaxPolygonVertices> nx{};
     std::array<double, kMaxPolygonVertices> ny{};
     std::array<double, kMaxPolygonVertices> c{};
-    std::array<double, kMaxPolygonVertices> len{};  // |(nx, ny)|, for distances from the faces
 
     void add(double px, double py, double pc) {
         nx[static_cast<std::size_t>(count)] = px;
         ny[static_cast<std::size_t>(count)] = py;
         c[static_cast<std::size_t>(count)] = pc;
-        len[static_cast<std::size_t>(count)] = std::hypot(px, py);
         ++count;
     }
     bool contains(double px, double py) const {
@@ -1161,9 +1159,12 @@ struct ConvexRegion : SolidRegionPlace {
     // Inside by at least `margin` from every face's line (for the MTD search's bound). Tested
     // against the faces themselves, not the vertices' bounds: a polygon moved or turned in
     // float may have a vertex a rounding outside the faces' intersection, which is the region.
+    // (c - n.p >= margin |n|, squared: no root, and nothing added to building a region.)
     bool inside_by(double px, double py, double margin) const {
-        for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i)
-            if (!(nx[i] * px + ny[i] * py <= c[i] - margin * len[i])) return false;
+        for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
+            const double room = c[i] - (nx[i] * px + ny[i] * py);
+            if (!(room >= 0.0 && room * room >= margin * margin * (nx[i] * nx[i] + ny[i] * ny[i]))) return false;
+        }
         return true;
     }
     // For the MTD search's seeds: through each face, the unit normal and the distance along it
@@ -1171,11 +1172,12 @@ struct ConvexRegion : SolidRegionPlace {
     template <class F>
     void exits(const Bounds& pts, F&& f) const {
         for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
-            if (!(len[i] > 0.0)) continue;
+            const double len = std::hypot(nx[i], ny[i]);
+            if (!(len > 0.0)) continue;
             // The rectangle's corner farthest behind the face: the least n.p.
             const double least = (nx[i] >= 0.0 ? nx[i] * pts.min_x : nx[i] * pts.max_x) +
                                  (ny[i] >= 0.0 ? ny[i] * pts.min_y : ny[i] * pts.max_y);
-            f(nx[i] / len[i], ny[i] / len[i], (c[i] - least) / len[i]);
+            f(nx[i] / len, ny[i] / len, (c[i] - least) / len);
         }
     }
     // A plane with nx == 0 decides the row exactly as contains() does; the others give the
