@@ -19,6 +19,7 @@
 #include "jostle/core/error.h"
 #include "jostle/render/png_io.h"
 #include "png_fast.h"  // engine/render/src (private): detail::adler32
+#include "pixel_rows.h"  // engine/render/src (private): detail::encode_png_rows
 #include "test_support.h"
 
 namespace jostle {
@@ -342,6 +343,32 @@ TEST(FastPng, CompressesWhatRepeatsAndStoresNoise) {
     const std::size_t filtered = noise.rgba.size() + 480;
     EXPECT_GE(encode_png(noise).size(), filtered);
     EXPECT_LT(encode_png(noise).size(), filtered + filtered / 1000 + 200);
+}
+
+// An animation encodes each frame's changed rectangle where it lies in the frame: the bytes
+// are those of a PNG of the rectangle copied out, for both encoders, every filter, and
+// rectangles at the edges, one pixel wide or high, and the whole image.
+TEST(FastPng, ARectangleInPlaceIsTheSameBytesAsItsCopy) {
+    const Image image = fast_test_image(300, 200, 2, 9);
+    const int rects[][4] = {{0, 0, 300, 200}, {0, 0, 1, 1}, {299, 199, 1, 1}, {17, 0, 1, 200}, {0, 123, 300, 1},
+                            {5, 7, 290, 180}, {150, 100, 150, 100}, {33, 41, 64, 3}};
+    const PngEncoding encodings[] = {PngEncoding{}, PngEncoding{.filter = PngFilter::paeth}, PngEncoding{.filter = PngFilter::adaptive},
+                                     PngEncoding{.threads = 3}, PngEncoding{.encoder = PngEncoder::libpng},
+                                     PngEncoding{.encoder = PngEncoder::libpng, .compression_level = 9, .filter = PngFilter::sub}};
+    for (const auto& r : rects) {
+        Image copy;
+        copy.width = r[2];
+        copy.height = r[3];
+        for (int y = r[1]; y < r[1] + r[3]; ++y) {
+            const auto* row = image.rgba.data() + (static_cast<std::size_t>(y) * 300 + static_cast<std::size_t>(r[0])) * 4;
+            copy.rgba.insert(copy.rgba.end(), row, row + static_cast<std::size_t>(r[2]) * 4);
+        }
+        for (const PngEncoding& e : encodings) {
+            EXPECT_EQ(detail::encode_png_rows(detail::rows_of(image, r[0], r[1], r[2], r[3]), e), encode_png(copy, e))
+                << r[0] << "," << r[1] << " " << r[2] << "x" << r[3] << " encoder " << static_cast<int>(e.encoder)
+                << " filter " << static_cast<int>(e.filter);
+        }
+    }
 }
 
 TEST_F(WritePng, DefaultIsTheFastEncoder) {

@@ -3,7 +3,8 @@
 // frame an fcTL (sequence, size, offset, delay, dispose/blend ops) and its image data: IDAT
 // chunks for frame 0 (so a plain PNG viewer shows it), fdAT chunks (sequence + IDAT payload)
 // for the others; then IEND. Sequence numbers count fcTL and fdAT chunks together from 0.
-// Each frame's data is the IDAT payload of a PNG of just its rectangle, which encode_png makes.
+// Each frame's data is the IDAT payload of a PNG of just its rectangle, which encode_png_rows
+// makes from the frame in place.
 #include "jostle/render/animation.h"
 
 #include <zlib.h>
@@ -16,6 +17,7 @@
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
+#include "pixel_rows.h"
 
 namespace jostle {
 namespace {
@@ -40,23 +42,12 @@ std::uint32_t get_u32(const std::uint8_t* p) {
     return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
 }
 
-// One chunk: length, type, data, CRC of type and data.
-std::vector<std::uint8_t> make_chunk(const char (&type)[5], std::span<const std::uint8_t> data) {
-    std::vector<std::uint8_t> chunk;
-    chunk.reserve(data.size() + 12);
-    put_u32(chunk, static_cast<std::uint32_t>(data.size()));
-    chunk.insert(chunk.end(), type, type + 4);
-    chunk.insert(chunk.end(), data.begin(), data.end());
-    uLong crc = crc32(0L, Z_NULL, 0);
-    crc = crc32(crc, chunk.data() + 4, static_cast<uInt>(data.size() + 4));
-    put_u32(chunk, static_cast<std::uint32_t>(crc));
-    return chunk;
-}
-
-// The chunks of a PNG file that encode_png made (trusted: well formed by construction).
+// The IDAT payloads of a PNG file that encode_png made (trusted: well formed by
+// construction), as spans into the file's bytes (a frame's data is written from there, not
+// copied out first), and IHDR's data.
 struct PngChunks {
-    std::vector<std::uint8_t> ihdr;               // IHDR's data
-    std::vector<std::vector<std::uint8_t>> idat;  // each IDAT's data, in order
+    std::span<const std::uint8_t> ihdr;
+    std::vector<std::span<const std::uint8_t>> idat;
 };
 
 PngChunks split_png(const std::vector<std::uint8_t>& png) {
@@ -67,8 +58,8 @@ PngChunks split_png(const std::vector<std::uint8_t>& png) {
         const std::uint8_t* type = png.data() + at + 4;
         const std::uint8_t* data = type + 4;
         JOSTLE_ASSERT(at + 12 + length <= png.size(), "split_png: chunk runs past the end");
-        if (std::memcmp(type, "IHDR", 4) == 0) out.ihdr.assign(data, data + length);
-        if (std::memcmp(type, "IDAT", 4) == 0) out.idat.emplace_back(data, data + length);
+        if (std::memcmp(type, "IHDR", 4) == 0) out.ihdr = {data, length};
+        if (std::memcmp(type, "IDAT", 4) == 0) out.idat.emplace_back(data, length);
         at += 12 + std::size_t{length};
     }
     return out;
@@ -81,48 +72,47 @@ struct Rect {
     int height = 0;
 };
 
+std::uint32_t pixel(const std::uint8_t* row, int x) {
+    std::uint32_t p;
+    std::memcpy(&p, row + 4 * static_cast<std::size_t>(x), 4);
+    return p;
+}
+
 // The smallest rectangle holding every pixel that differs between a and b (same size), or
-// nullopt when they are equal.
+// nullopt when they are equal. Rows are compared whole first; only a row that differs is
+// searched, and only outside the columns already in the rectangle (the rows between the first
+// and last changed ones are mostly equal in game footage, and pixel by pixel they were most
+// of an animation's time).
 std::optional<Rect> changed_rect(const Image& a, const Image& b) {
     const std::size_t row_bytes = static_cast<std::size_t>(a.width) * 4;
     int top = -1;
     int bottom = -1;
-    for (int y = 0; y < a.height; ++y) {
-        const std::size_t row = static_cast<std::size_t>(y) * row_bytes;
-        if (std::memcmp(a.rgba.data() + row, b.rgba.data() + row, row_bytes) != 0) {
-            if (top < 0) top = y;
-            bottom = y;
-        }
-    }
-    if (top < 0) return std::nullopt;
     int left = a.width;
     int right = -1;
-    for (int y = top; y <= bottom; ++y) {
+    for (int y = 0; y < a.height; ++y) {
         const std::uint8_t* pa = a.rgba.data() + static_cast<std::size_t>(y) * row_bytes;
         const std::uint8_t* pb = b.rgba.data() + static_cast<std::size_t>(y) * row_bytes;
-        auto same = [&](int x) { return std::memcmp(pa + 4 * x, pb + 4 * x, 4) == 0; };
+        if (std::memcmp(pa, pb, row_bytes) == 0) continue;
+        if (top < 0) top = y;
+        bottom = y;
         int x = 0;
-        while (x < left && same(x)) ++x;
+        while (x < left && pixel(pa, x) == pixel(pb, x)) ++x;
         left = std::min(left, x);
         int r = a.width - 1;
-        while (r > right && same(r)) --r;
+        while (r > right && pixel(pa, r) == pixel(pb, r)) --r;
         right = std::max(right, r);
     }
+    if (top < 0) return std::nullopt;
     return Rect{left, top, right - left + 1, bottom - top + 1};
 }
 
-Image crop(const Image& image, const Rect& rect) {
-    Image out;
-    out.width = rect.width;
-    out.height = rect.height;
-    const std::size_t out_row = static_cast<std::size_t>(rect.width) * 4;
-    out.rgba.resize(out_row * static_cast<std::size_t>(rect.height));
-    for (int y = 0; y < rect.height; ++y) {
-        const std::size_t from = (static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(image.width) +
-                                  static_cast<std::size_t>(rect.x)) * 4;
-        std::memcpy(out.rgba.data() + static_cast<std::size_t>(y) * out_row, image.rgba.data() + from, out_row);
+// Copies rect's pixels of `from` into `to` (same size).
+void copy_rect(const Image& from, Image& to, const Rect& rect) {
+    const std::size_t row_bytes = static_cast<std::size_t>(from.width) * 4;
+    for (int y = rect.y; y < rect.y + rect.height; ++y) {
+        const std::size_t at = static_cast<std::size_t>(y) * row_bytes + static_cast<std::size_t>(rect.x) * 4;
+        std::memcpy(to.rgba.data() + at, from.rgba.data() + at, static_cast<std::size_t>(rect.width) * 4);
     }
-    return out;
 }
 
 }  // namespace
@@ -136,15 +126,36 @@ struct AnimationWriter::Impl {
     bool finished = false;
     std::uint32_t sequence = 0;     // next fcTL/fdAT sequence number
     std::int64_t actl_offset = 0;   // where acTL's data starts, patched by finish()
-    // The frame waiting to be written: its rectangle, its data and how many added frames it
-    // stands for (equal frames merge into it).
+    // The frame waiting to be written: its rectangle, its encoded PNG and that PNG's IDAT
+    // payloads, and how many added frames it stands for (equal frames merge into it).
     Rect pending_rect;
-    std::vector<std::vector<std::uint8_t>> pending_data;
+    std::vector<std::uint8_t> pending_png;
+    std::vector<std::span<const std::uint8_t>> pending_data;
     int pending_count = 0;
 
     Impl(std::string path, const AnimationDesc& d) : file(std::move(path)), desc(d) {}
 
     void write(std::span<const std::uint8_t> bytes) { file.write(bytes.data(), bytes.size()); }
+
+    // One chunk: length, type, data, CRC of type and data; the data is `head` then `body`
+    // (an fdAT's sequence number, then the IDAT payload it carries), written where they are.
+    void write_chunk(const char (&type)[5], std::span<const std::uint8_t> head, std::span<const std::uint8_t> body = {}) {
+        std::vector<std::uint8_t> start;
+        put_u32(start, static_cast<std::uint32_t>(head.size() + body.size()));
+        start.insert(start.end(), type, type + 4);
+        uLong crc = crc32(0L, Z_NULL, 0);
+        crc = crc32(crc, start.data() + 4, 4);
+        // (Not with an empty span: crc32 of a null pointer restarts the CRC.)
+        for (const std::span<const std::uint8_t> part : {head, body}) {
+            if (!part.empty()) crc = crc32(crc, part.data(), static_cast<uInt>(part.size()));
+        }
+        std::vector<std::uint8_t> end;
+        put_u32(end, static_cast<std::uint32_t>(crc));
+        write(start);
+        write(head);
+        write(body);
+        write(end);
+    }
 
     void write_pending() {
         std::vector<std::uint8_t> fctl;
@@ -157,16 +168,14 @@ struct AnimationWriter::Impl {
         put_u16(fctl, static_cast<std::uint32_t>(desc.delay_den));
         fctl.push_back(kDisposeNone);
         fctl.push_back(kBlendSource);
-        write(make_chunk("fcTL", fctl));
-        for (const std::vector<std::uint8_t>& data : pending_data) {
+        write_chunk("fcTL", fctl);
+        for (const std::span<const std::uint8_t> data : pending_data) {
             if (stored == 0) {
-                write(make_chunk("IDAT", data));
+                write_chunk("IDAT", data);
             } else {
-                std::vector<std::uint8_t> fdat;
-                fdat.reserve(data.size() + 4);
-                put_u32(fdat, sequence++);
-                fdat.insert(fdat.end(), data.begin(), data.end());
-                write(make_chunk("fdAT", fdat));
+                std::vector<std::uint8_t> seq;
+                put_u32(seq, sequence++);
+                write_chunk("fdAT", seq, data);
             }
         }
         ++stored;
@@ -174,17 +183,19 @@ struct AnimationWriter::Impl {
         pending_count = 0;
     }
 
+    // Encodes rect of frame, in place, as the pending frame.
     void start_pending(const Image& frame, const Rect& rect) {
-        PngChunks chunks = split_png(encode_png(crop(frame, rect), desc.encoding));
+        pending_png = detail::encode_png_rows(detail::rows_of(frame, rect.x, rect.y, rect.width, rect.height), desc.encoding);
+        const PngChunks chunks = split_png(pending_png);
         if (added == 0) {
             write(kPngSignature);
-            write(make_chunk("IHDR", chunks.ihdr));
+            write_chunk("IHDR", chunks.ihdr);
             actl_offset = file.tell() + 8;
             const std::uint8_t actl[8] = {};  // frame count and plays, filled in by finish()
-            write(make_chunk("acTL", actl));
+            write_chunk("acTL", actl);
         }
         pending_rect = rect;
-        pending_data = std::move(chunks.idat);
+        pending_data = chunks.idat;
         pending_count = 1;
     }
 };
@@ -226,7 +237,8 @@ void AnimationWriter::add(const Image& frame) {
     // A frame that must be stored although nothing changed (the delay overflowed) redraws one
     // pixel: an fcTL needs a non-empty rectangle.
     m.start_pending(frame, rect.value_or(Rect{0, 0, 1, 1}));
-    m.previous = frame;
+    // The previous frame differs from this one only inside rect.
+    if (rect) copy_rect(frame, m.previous, *rect);
     ++m.added;
 }
 
@@ -237,13 +249,12 @@ void AnimationWriter::finish() {
         throw InputError(SourceLocation{m.file.path(), 0, 0}, "cannot write an animation without frames");
     }
     m.write_pending();
-    m.write(make_chunk("IEND", {}));
+    m.write_chunk("IEND", {});
     std::vector<std::uint8_t> actl;
     put_u32(actl, static_cast<std::uint32_t>(m.stored));
     put_u32(actl, static_cast<std::uint32_t>(m.desc.loops));
-    const std::vector<std::uint8_t> chunk = make_chunk("acTL", actl);
     m.file.seek(m.actl_offset - 8);
-    m.write(chunk);
+    m.write_chunk("acTL", actl);
     m.file.commit();
     m.finished = true;
 }

@@ -81,11 +81,11 @@ std::uint64_t row_cost(const std::uint8_t* f, std::size_t n) {
 }
 
 // Filters rows [y0, y1) into `out` (1 + row_bytes per row: the filter type, then the bytes).
-void filter_rows(const Image& image, PngFilter filter, int y0, int y1, std::uint8_t* out, std::vector<std::uint8_t>& scratch) {
+void filter_rows(const PixelRows& image, PngFilter filter, int y0, int y1, std::uint8_t* out, std::vector<std::uint8_t>& scratch) {
     const std::size_t n = static_cast<std::size_t>(image.width) * kBpp;
     for (int y = y0; y < y1; ++y) {
-        const std::uint8_t* row = image.rgba.data() + static_cast<std::size_t>(y) * n;
-        const std::uint8_t* above = y > 0 ? row - n : nullptr;
+        const std::uint8_t* row = image.row(y);
+        const std::uint8_t* above = y > 0 ? image.row(y - 1) : nullptr;
         std::uint8_t* dst = out + static_cast<std::size_t>(y - y0) * (n + 1);
         int type = 2;
         switch (filter) {
@@ -599,7 +599,7 @@ int strip_rows(int width) { return std::max(1, (256 * 1024) / (width * static_ca
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_png_fast(const Image& image, PngFilter filter, int threads) {
+std::vector<std::uint8_t> encode_png_fast(const PixelRows& image, PngFilter filter, int threads) {
     const std::size_t row_bytes = static_cast<std::size_t>(image.width) * kBpp;
     const int rows_per_strip = strip_rows(image.width);
     const int strips = (image.height + rows_per_strip - 1) / rows_per_strip;

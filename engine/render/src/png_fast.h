@@ -8,14 +8,15 @@
 #include <vector>
 
 #include "jostle/render/png_io.h"
+#include "pixel_rows.h"
 
 namespace jostle::detail {
 
-// A complete 8-bit RGBA PNG file (signature, IHDR, one IDAT, IEND) of `image`, whose shape
-// the caller has checked. Rows are grouped into strips of a fixed number of rows (from the
+// A complete 8-bit RGBA PNG file (signature, IHDR, one IDAT, IEND) of `image`'s pixels, whose
+// shape the caller has checked. Rows are grouped into strips of a fixed number of rows (from the
 // image's width alone); each strip is filtered and compressed on its own, so `threads`
 // workers can share them, and the bytes never depend on how many did.
-std::vector<std::uint8_t> encode_png_fast(const Image& image, PngFilter filter, int threads);
+std::vector<std::uint8_t> encode_png_fast(const PixelRows& image, PngFilter filter, int threads);
 
 // Adler-32 of data (RFC 1950), continuing from `adler` (1 to start): zlib's adler32 value,
 // computed 16 bytes at a time with SSE2 (every x86-64 has it; other machines take the byte

@@ -246,9 +246,18 @@ std::vector<std::uint8_t> encode_png(const Image& image, const PngEncoding& enco
                   "encode_png: image sides must be in 1..kMaxImageSide");
     JOSTLE_ASSERT(std::int64_t{image.width} * image.height <= kMaxImagePixels,
                   "encode_png: image has more than kMaxImagePixels pixels");
-    const std::size_t row_bytes = static_cast<std::size_t>(image.width) * 4;
-    JOSTLE_ASSERT(image.rgba.size() == row_bytes * static_cast<std::size_t>(image.height),
+    JOSTLE_ASSERT(image.rgba.size() == static_cast<std::size_t>(image.width) * 4 * static_cast<std::size_t>(image.height),
                   "encode_png: rgba.size() must be width * height * 4");
+    return detail::encode_png_rows(detail::rows_of(image), encoding);
+}
+
+std::vector<std::uint8_t> detail::encode_png_rows(const PixelRows& image, const PngEncoding& encoding) {
+    JOSTLE_ASSERT(image.width >= 1 && image.width <= kMaxImageSide && image.height >= 1 &&
+                      image.height <= kMaxImageSide,
+                  "encode_png: image sides must be in 1..kMaxImageSide");
+    JOSTLE_ASSERT(std::int64_t{image.width} * image.height <= kMaxImagePixels,
+                  "encode_png: image has more than kMaxImagePixels pixels");
+    JOSTLE_ASSERT(image.stride >= static_cast<std::size_t>(image.width) * 4, "encode_png: rows overlap");
     JOSTLE_ASSERT(encoding.compression_level >= -1 && encoding.compression_level <= 9,
                   "encode_png: compression level must be in 0..9 (or -1, libpng's default)");
     JOSTLE_ASSERT(encoding.threads >= 1 && encoding.threads <= 16, "encode_png: threads must be in 1..16");
@@ -256,15 +265,14 @@ std::vector<std::uint8_t> encode_png(const Image& image, const PngEncoding& enco
 
     std::vector<std::uint8_t> out;
     // Raw size plus a little: one reservation covers all but incompressible noise.
-    out.reserve(row_bytes * static_cast<std::size_t>(image.height) / 2 + 1024);
+    out.reserve(static_cast<std::size_t>(image.width) * 4 * static_cast<std::size_t>(image.height) / 2 + 1024);
     PngWrite w;
     w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w.status, on_png_error, on_png_warning);
     if (w.png != nullptr) w.info = png_create_info_struct(w.png);
     if (w.png == nullptr || w.info == nullptr) throw std::bad_alloc();
     // libpng does not modify the rows it writes; its API just lacks the const.
     std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
-    auto* pixels = const_cast<png_bytep>(image.rgba.data());
-    for (std::size_t y = 0; y < rows.size(); ++y) rows[y] = pixels + y * row_bytes;
+    for (std::size_t y = 0; y < rows.size(); ++y) rows[y] = const_cast<png_bytep>(image.row(static_cast<int>(y)));
     const bool ok = write_png_data(w, &out, rows.data(), static_cast<png_uint_32>(image.width),
                                    static_cast<png_uint_32>(image.height), encoding);
     // Encoding into memory fails only when memory runs out.
