@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/core/text.h"
 #include "jostle/core/hash.h"
@@ -198,6 +199,22 @@ public:
             if (t.alive && t.name == name) return world_.get(t.id)->position;
         }
         return std::nullopt;
+    }
+
+    bool entity_named(std::string_view name) const override {
+        // The level's things and the player, then bullet_N and ball_N for those fired so far.
+        if (name == "player") return true;
+        for (const LevelThing& t : level_.things) {
+            if (t.name == name) return true;
+        }
+        const auto numbered = [&](std::string_view prefix, std::int64_t fired) {
+            if (!name.starts_with(prefix)) return false;
+            const std::string_view digits = name.substr(prefix.size());
+            std::int64_t n = 0;
+            const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+            return ec == std::errc{} && end == digits.data() + digits.size() && digits[0] != '0' && n >= 1 && n <= fired;
+        };
+        return numbered("bullet_", shots_) || numbered("ball_", balls_);
     }
 
     std::int64_t count(std::string_view kind) const override {
@@ -530,6 +547,16 @@ ArenaGame::ArenaGame(std::string assets_dir, Rules rules) : assets_dir_(std::mov
 }
 
 std::string ArenaGame::level_path(const std::string& level) const { return assets_dir_ + "/levels/" + level + ".level"; }
+
+std::string ArenaGame::asset_named(const std::string& path) const {
+    for (const std::string& level : vocabulary_.levels) {
+        if (same_file(path, level_path(level))) return "the level '" + level + "'";
+    }
+    for (const std::string& name : sprite_names(assets_dir_)) {
+        if (same_file(path, assets_dir_ + "/sprites/" + name + ".png")) return "the sprite '" + name + "'";
+    }
+    return "";
+}
 
 std::string ArenaGame::level_hash(const std::string& level) const {
     // The level and every sprite: masks change the game, pictures change the screenshots.

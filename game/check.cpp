@@ -39,8 +39,8 @@ std::string_view check_help() {
 
 Replays each scenario and compares the run with its goldens, which live beside it:
 NAME.trace (the state hash of every tick, with entity dumps) and NAME.tick_T.png (the frame
-at each screenshot). A folder means every *.scn in it; the default is the source tree's
-assets/scenarios. Reported per scenario: the first divergent tick with the entities and
+at each screenshot). A folder means every *.scn in it; the default is the assets' scenarios folder
+(--assets DIR/scenarios). Reported per scenario: the first divergent tick with the entities and
 fields that differ, failed expectations, and screenshots that differ.
 
 options:
@@ -49,7 +49,7 @@ options:
                     interrupted update changes nothing. Missing goldens are created only so.
   --report DIR      write DIR/report.html (each failing scenario with its expected, actual
                     and diff images side by side) and DIR/junit.xml (every scenario)
-  --jobs N          check N scenarios at once (default 1)
+  --jobs N          check N scenarios at once, 1 to 256 (default 1)
   --tolerance N     per-channel difference (0..255) that still counts as equal in images
   --max-pixels N    how many pixels may differ in each image (0..9223372036854775807; default 0)
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)

@@ -92,8 +92,9 @@ std::string ratio_text(double v) {
 }  // namespace
 
 std::string_view play_help() {
-    return R"(usage: jostle play SCENARIO [--out DIR] [--frames A-B] [--every N] [--size WxH] [--overlay]
-                   [--sheet FILE] [--anim FILE] [--trace FILE] [--quiet]
+    return R"(usage: jostle play SCENARIO [--out DIR] [--frames LIST] [--every N] [--size WxH] [--overlay]
+                   [--no-hud] [--sheet FILE] [--anim FILE] [--trace FILE] [--dump-every N]
+                   [--quiet] [--assets DIR]
 
 Replays a scenario of the arena game: the level, the seed and the input of every tick come
 from the file, so every run is the same run. Without an output option it only simulates, as
@@ -194,6 +195,12 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
 
     try {
         const game::ArenaGame game(assets);
+        for (const auto& [flag, path] : {std::pair{"--trace", &trace_path}, std::pair{"--sheet", &options.sheet_path},
+                                         std::pair{"--anim", &options.anim_path}}) {
+            if (const std::string asset = game.asset_named(*path); !asset.empty()) {
+                return usage(err, std::string(flag) + ": '" + *path + "' is " + asset + " of the assets; give another path");
+            }
+        }
         const Scenario scenario = load_scenario(scenario_path, game.vocabulary());
         const std::string hash = game.level_hash(scenario.level);
         if (hash != scenario.level_hash && !quiet) {

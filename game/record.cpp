@@ -142,6 +142,9 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
 
     try {
         const game::ArenaGame game(assets);
+        if (const std::string asset = game.asset_named(out_path); !asset.empty()) {
+            return usage(err, "-o: '" + out_path + "' is " + asset + " of the assets; give another path");
+        }
         std::optional<Scenario> from;
         if (!from_path.empty()) {
             from = load_scenario(from_path, game.vocabulary());

@@ -235,6 +235,24 @@ TEST_F(Arena, FireSpawnsABulletAndObeysTheCooldown) {
     EXPECT_EQ(gone_at, 67);
 }
 
+// The names an expectation may use: the level's things and the player from the start, bullet_N
+// and ball_N once the Nth is fired, and still after it is gone.
+TEST_F(Arena, EntityNamedKnowsEveryNameTheRunHasHad) {
+    const auto sim = start("open");
+    for (const char* name : {"player", "left"}) EXPECT_TRUE(sim->entity_named(name)) << name;
+    for (const char* name : {"nobody", "bullet_1", "bullet_0", "ball_1", "bullet_", "bullet", "Player"}) {
+        EXPECT_FALSE(sim->entity_named(name)) << name;
+    }
+    sim->tick(hold({kFire}));
+    EXPECT_TRUE(sim->entity_named("bullet_1"));
+    for (const char* name : {"bullet_2", "bullet_01", "bullet_1x", "bullet_+1", "bullet_-1", "ball_1"}) {
+        EXPECT_FALSE(sim->entity_named(name)) << name;
+    }
+    for (int t = 1; t < 89 && sim->entity_position("bullet_1"); ++t) sim->tick(InputFrame{});
+    EXPECT_FALSE(sim->entity_position("bullet_1").has_value());
+    EXPECT_TRUE(sim->entity_named("bullet_1"));  // gone, but it was there
+}
+
 TEST_F(Arena, TappingFireInsideTheCooldownDoesNothing) {
     const auto shots_after = [&](const std::vector<int>& fire_ticks, Rules rules = {}) {
         const auto sim = start("open", rules);

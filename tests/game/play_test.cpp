@@ -344,5 +344,28 @@ TEST_F(Play, AnOutputThatCannotBeWrittenIsBadInput) {
     EXPECT_FALSE(fs::exists(trace));
 }
 
+// The game's own files are inputs too: an output naming a level or a sprite of the assets (by
+// any spelling of its path) is refused before the run, and the file is left as it was.
+TEST_F(Play, AnOutputNamingALevelOrASpriteOfTheAssetsIsRefused) {
+    const fs::path assets = path("assets");
+    fs::create_directories(assets);
+    fs::copy(fs::path(kAssets) / "levels", assets / "levels");
+    fs::copy(fs::path(kAssets) / "sprites", assets / "sprites");
+    const std::string s = scenario("s.scn", kDrive);
+    const std::string level = (assets / "levels" / "arena.level").string();
+    const std::string sprite = (assets / "sprites" / ".." / "sprites" / "tree.png").string();
+    const std::string level_bytes = test::read_text(level), sprite_bytes = test::read_text(sprite);
+    const std::pair<std::string, std::string> cases[] = {
+        {"--trace", level}, {"--sheet", sprite}, {"--anim", level}};
+    for (const auto& [flag, output] : cases) {
+        const RunResult r = run_jostle({"play", s, "--assets", assets.string(), flag, output, "--quiet"});
+        EXPECT_EQ(r.status, 2) << flag;
+        const std::string what = output == level ? "the level 'arena'" : "the sprite 'tree'";
+        EXPECT_EQ(r.err, usage_error(flag + ": '" + output + "' is " + what + " of the assets; give another path"));
+    }
+    EXPECT_EQ(test::read_text(level), level_bytes);
+    EXPECT_EQ(test::read_text(sprite), sprite_bytes);
+}
+
 }  // namespace
 }  // namespace jostle

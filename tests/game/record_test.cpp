@@ -603,5 +603,24 @@ TEST_F(Record, AScriptLongerThanAScenarioCanBeIsRefusedAtItsLine) {
     EXPECT_EQ(at_cap.ticks(), 16777216);
 }
 
+// -o naming a level or a sprite of the assets (the game's own files) is refused before the
+// recording, and the file is left as it was.
+TEST_F(Record, AnOutputNamingALevelOrASpriteOfTheAssetsIsRefused) {
+    const fs::path assets = path("assets");
+    fs::create_directories(assets);
+    fs::copy(fs::path(kAssets) / "levels", assets / "levels");
+    fs::copy(fs::path(kAssets) / "sprites", assets / "sprites");
+    const std::string script = write("w.script", "wait 3\n");
+    for (const auto& [file, what] : {std::pair{"levels/arena.level", "the level 'arena'"}, std::pair{"sprites/ship.png", "the sprite 'ship'"}}) {
+        const std::string out = (assets / file).string();
+        const std::string before = test::read_text(out);
+        const RunResult r = test::run_jostle_binary({"record", "--assets", assets.string(), "--level", "arena", "-o", out, "--script", script});
+        EXPECT_EQ(r.status, 2) << file;
+        EXPECT_EQ(r.err, "jostle record: -o: '" + out + "' is " + std::string(what) +
+                             " of the assets; give another path\nRun 'jostle record --help' for usage.\n");
+        EXPECT_EQ(test::read_text(out), before);
+    }
+}
+
 }  // namespace
 }  // namespace jostle

@@ -46,6 +46,10 @@ public:
         if (name == "half_pixel") return Vec2{0.5f, -1.25f};
         return std::nullopt;
     }
+    // ("ghost" arrives at tick 5, never alive: only ever named.)
+    bool entity_named(std::string_view name) const override {
+        return name == "player" || name == "half_pixel" || (name == "ghost" && ticks_ > 5);
+    }
     std::int64_t count(std::string_view kind) const override { return kind == "rock" ? ticks_ : 0; }
     std::optional<double> variable(std::string_view name) const override {
         if (name == "score") return 10.0 * static_cast<double>(ticks_);
@@ -234,8 +238,23 @@ TEST_F(Replay, ExpectationsNamingWhatTheGameDoesNotHaveAreBadInputBeforeAnyTick)
     EXPECT_EQ(error_of(scenario("at 2 expect event boom\nat 5 expect event bam\n"), o),
               "s.scn:8: unknown event 'bam' (expected one of: boom, bang)");
     EXPECT_TRUE(log_.inputs.empty());  // refused before the first tick
-    // An entity name is not checked: entities come and go during a run.
-    EXPECT_NO_THROW(replay(game_, scenario("at 1 expect ghost alive\n"), o));
+}
+
+// Entities come and go during a run, so an entity's name is checked at the expectation's tick:
+// one that no entity has had by then is a typo (it would make `gone` pass), not a check.
+TEST_F(Replay, AnEntityNoEntityHasHadByTheExpectationsTickIsBadInput) {
+    const ReplayOptions o = null_options();
+    const std::string hint = " (a misspelt name? the dumps of 'jostle play --trace' name every entity)";
+    EXPECT_EQ(error_of(scenario("at 2 expect playr gone\n"), o), "s.scn:7: no entity named 'playr' has been in the run by tick 2" + hint);
+    EXPECT_EQ(error_of(scenario("at 1 expect player alive\nat 3 expect ghost alive\n"), o),
+              "s.scn:8: no entity named 'ghost' has been in the run by tick 3" + hint);
+    EXPECT_EQ(error_of(scenario("at 4 expect ghost in 0 0 1 1\n"), o), "s.scn:7: no entity named 'ghost' has been in the run by tick 4" + hint);
+    // From tick 5 on, ghost has been in the run (the fake's rule): gone is a check that passes.
+    const ReplayResult r = replay(game_, scenario("at 5 expect ghost gone\nat 6 expect ghost alive\nat 7 end\n"), o);
+    ASSERT_EQ(r.expectations.size(), 2u);
+    EXPECT_TRUE(r.expectations[0].passed);
+    EXPECT_FALSE(r.expectations[1].passed);
+    EXPECT_EQ(r.expectations[1].actual, "ghost is gone");
 }
 
 TEST_F(Replay, ABadLevelIsAnInputError) {

@@ -156,6 +156,7 @@ Recording record(const Game& game, const RecordDesc& desc, std::span<const Scrip
                     Expectation e = step.expectation;
                     e.tick = last;
                     validate_expectation(e, *sim, script_source);
+                    validate_entity_name(e, *sim, script_source);
                     s.expectations.push_back(std::move(e));
                     out.expectation_sources.push_back(script_source);
                 }

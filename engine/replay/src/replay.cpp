@@ -105,6 +105,14 @@ void validate_expectation(const Expectation& e, const Simulation& sim, const std
     }
 }
 
+void validate_entity_name(const Expectation& e, const Simulation& sim, const std::string& source) {
+    if (e.kind != Expectation::Kind::in_region && e.kind != Expectation::Kind::alive && e.kind != Expectation::Kind::gone) return;
+    if (sim.entity_named(e.name)) return;
+    throw InputError(SourceLocation{source, e.line, 0},
+                     "no entity named '" + e.name + "' has been in the run by tick " + std::to_string(e.tick) +
+                         " (a misspelt name? the dumps of 'jostle play --trace' name every entity)");
+}
+
 bool ReplayResult::expectations_passed() const {
     return std::all_of(expectations.begin(), expectations.end(), [](const ExpectationResult& r) { return r.passed; });
 }
@@ -171,6 +179,7 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
         sim->tick(scenario.input(t));
         result.hashes.push_back(sim->state_hash());
         while (next_expectation < scenario.expectations.size() && scenario.expectations[next_expectation].tick == t) {
+            validate_entity_name(scenario.expectations[next_expectation], *sim, scenario.source);
             result.expectations.push_back(check(scenario.expectations[next_expectation], *sim));
             ++next_expectation;
         }

@@ -61,12 +61,18 @@ struct ReplayResult {
 };
 
 // Plays `scenario` with `game`. Throws InputError when the level is bad, an expectation names
-// a kind, variable or event the game does not have, or an output cannot be written.
+// a kind, variable or event the game does not have (before the first tick) or an entity no
+// entity of the run has had by the expectation's tick, or an output cannot be written.
 ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOptions& options = {});
 
 // An expectation must name kinds, variables and events the game has: a typo is bad input
 // (InputError at source:line), not a failing check. replay() checks every expectation so.
 void validate_expectation(const Expectation& e, const Simulation& sim, const std::string& source);
+
+// An expectation about an entity (in, alive, gone) must name one that has lived in the run by
+// the expectation's tick (Simulation::entity_named), checked at that tick: otherwise a typo
+// would make `gone` pass and `alive` fail for the wrong reason. InputError at source:line.
+void validate_entity_name(const Expectation& e, const Simulation& sim, const std::string& source);
 
 // The trace file: the hash of every tick and the dumps, readable and diffable:
 //   jostle-trace 1

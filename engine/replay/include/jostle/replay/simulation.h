@@ -56,6 +56,9 @@ public:
     // the number of live entities of a kind; a game variable (nullopt when the game has no
     // such variable); whether the game reported the named event so far.
     virtual std::optional<Vec2> entity_position(std::string_view name) const = 0;
+    // Whether an entity of that name has lived at some time in the run so far (false for a
+    // name no entity has had: a misspelt expectation).
+    virtual bool entity_named(std::string_view name) const = 0;
     virtual std::int64_t count(std::string_view kind) const = 0;
     virtual std::optional<double> variable(std::string_view name) const = 0;
     virtual bool event_happened(std::string_view name) const = 0;
