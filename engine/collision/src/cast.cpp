@@ -149,7 +149,9 @@ CastHit cast(Vec2 from, Vec2 to, const Obb& box) {
 
 namespace {
 
-// Cyrus-Beck's pass over a convex polygon's edges (09-103), for cast(Polygon): every edge's
+// Cyrus-Beck's pass over a convex polygon's edges, for cast(Polygon) (not in the lecture: 09-103
+// models the bullet as a segment, and the slides' way would be 09-76..09-78 against each edge;
+// clipping gives the first edge reached in one pass): every edge's
 // half-plane, n.(x - p) <= 0, cuts the segment's parameter range [0, 1] at t = num / den with
 // num = n.(p - from) and den = n.d. The segment enters at the latest entering edge (den < 0)
 // and leaves at the earliest leaving one (den > 0); an edge it runs parallel to (den == 0)
@@ -243,7 +245,7 @@ inline CastHit make_hit(__m128 t, __m128 point, __m128 normal) {
     return h;
 }
 
-// The loop's answer (Cyrus-Beck, 09-103) for 3 to 8 edges, one to a lane of AVX2 (chosen at run
+// The loop's answer (Cyrus-Beck, above) for 3 to 8 edges, one to a lane of AVX2 (chosen at run
 // time): one VDIVPS for every t, one fold over the lanes, lane masks, and a branch on hit or
 // miss where the loop branches on every edge. The lanes do the loop's arithmetic with one sign
 // turned: side = the sum of n * (from - p) is -num exactly (negating a product or a sum is

@@ -169,7 +169,8 @@ inline FaceSeparations face_separations(const Polygon& poly, Float4 cc) {
     return f;
 }
 
-// How far the point is outside the farthest face (09-90's first step): the largest of the
+// How far the point is outside the farthest face (the edge normals as separating axes, 09-95:
+// a separation past r is a gap): the largest of the
 // lanes' maxima. Only the sign of a zero maximum may depend on the order of the search, which
 // no use of it can tell (r - max_sep is +-0 either way, and a zero depth is returned as +0).
 inline float largest(Float4 top) {
@@ -419,6 +420,9 @@ Manifold collide(const Polygon& a, const Circle& b) {
     // 09-90: the closest point p of the polygon's boundary to the centre c; the MTD has
     // direction p - c and length r - |p - c|. The slide assumes c is outside; when it is
     // inside, the shortest way out is through the nearest edge, by r plus c's depth.
+    // p is found by features, not by the slide's loop over every edge: the face of largest
+    // separation when c projects inside it, else the nearest vertex. That is the same point
+    // (the slide's loop, literally, is detail::offset_from_boundary, which closest_point uses).
     // The circle is checked only for an answer that would be a hit (an invalid circle is a
     // miss, and the arithmetic on any input is defined); the empty polygon has no faces.
 #ifdef JOSTLE_AVX2_PATHS

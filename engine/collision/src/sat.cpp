@@ -131,15 +131,6 @@ inline BoxBox box_box(Vec2 half_a, Rot qa, Vec2 half_b, Rot qb, Vec2 d) {
 }
 }  // namespace
 
-// Two convex polygons, B shifted by `offset` (09-62, in the form that needs each face once).
-// Of an axis u, SAT's two pushes measure the gap on either side; for polygons only one side
-// of each edge normal can be the answer: the MTD is the distance from the origin to the
-// boundary of the Minkowski difference A - B, whose edges are A's edges and B's edges turned
-// round, so its outward normals are exactly A's normals and B's normals negated. For A's edge
-// i, B's separation from that edge's line is min over B's vertices of dot(n_i, b_j - a_i);
-// the largest separation over all faces, if <= 0, is minus the depth (09-60), and a face with
-// separation > 0 is a separating axis (09-50's early exit). Every difference is between nearby
-// points, so the result keeps the precision of the shapes' size wherever they are.
 namespace {
 // Two convex polygons, B shifted by `offset` (09-62, in the form that needs each face once).
 // Of an axis u, SAT's two pushes measure the overlap on either side; for polygons only one

@@ -29,7 +29,7 @@ detail::CircleContact detail::first_contact_with_circle(Vec2 offset, Vec2 v, flo
     // 09-122: G^2 = (r_s + r_d)^2 - F^2; first contact after travelling D - G.
     const float G = std::sqrt(radius * radius - F2);
     const float travel = D - G;
-    if (travel > speed) return {};  // 09-118: ||v|| >= D - G; touching at the end counts
+    if (travel > speed) return {};  // 09-118 has ||v|| > D - G; here >=: touching at the end counts
     // Already within R up to rounding (the caller found no overlap): contact at t = 0, seen
     // from where the point is. G is ill-conditioned there (the square root of rounding), so
     // the formula below would tilt the normal toward the motion.
@@ -89,7 +89,7 @@ SweepHit contact_at_start(const Circle& moving, Vec2 v, const Manifold& shape_vs
 // edge normals (a segment is the 2-gon a->b, b->a); the caller has checked that they are not in
 // contact at t = 0, and passes `entry`, the cast of the centre alone against the shape.
 // The contact is the earliest of: the centre coming within r of a face's line inside that
-// face's window (09-115's closest approach, per face), the centre coming within r of a vertex
+// face's window (the face's analogue of 09-118's first contact), the centre coming within r of a vertex
 // (D/F/G, 09-118), and the centre itself entering the shape. The last bounds the others: with
 // a radius below the rounding of the first two, it is what stops the ball, so nothing passes
 // through. Worked relative to the circle's start, where floats are dense.

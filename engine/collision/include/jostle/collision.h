@@ -59,15 +59,19 @@
 //   Segment                                                         SAT         mask
 //   Mask                                                                        mask
 //   per-axis  09-23 separation test, MTD along the axis that needs the smaller push (09-34)
-//   SAT box   09-58: the 2 + 2 edge normals of the boxes, projected radii, early exit
-//   SAT       09-62: every edge normal of both shapes (a segment adds its own direction,
-//             since it has no area), early exit on the first separating axis, MTD along
-//             the axis of least push (09-60). For two polygons each edge normal is tested
+//   SAT box   09-58: the 2 + 2 edge normals of the boxes, projected radii, one gap test
+//             over the four axes (in place of 09-50's early exit)
+//   SAT       09-62: every edge normal of both shapes (two segments also try each one's
+//             direction, since they have no area; a polygon or box against a segment needs
+//             only its own faces and the segment's two sides), early exit on the first
+//             separating axis, MTD along the axis of least push (09-60). For two polygons
+//             each edge normal is tested
 //             on its outward side only: those are the faces of the Minkowski difference,
 //             where the least push always lies
 //   clamp     09-102: closest point in the box by "push in"; a centre inside the box is
 //             pushed out through the nearest face
-//   closest   09-87/09-90: closest point on the boundary to the circle's centre; a centre
+//   closest   09-87/09-90: closest point on the boundary to the circle's centre (found by
+//             features: the face of largest separation, else the nearest vertex); a centre
 //             inside the polygon is pushed out through the nearest edge.
 //             collide_sat(Polygon, Circle) is the lecture's second method (09-96): SAT with
 //             the extra axis from the centre to the nearest vertex; it gives the same result.
