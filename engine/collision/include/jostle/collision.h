@@ -65,9 +65,8 @@
 //             direction, since they have no area; a polygon or box against a segment needs
 //             only its own faces and the segment's two sides), early exit on the first
 //             separating axis, MTD along the axis of least push (09-60). For two polygons
-//             each edge normal is tested
-//             on its outward side only: those are the faces of the Minkowski difference,
-//             where the least push always lies
+//             each edge normal is tested on its outward side only: those are the faces of
+//             the Minkowski difference, where the least push always lies
 //   clamp     09-102: closest point in the box by "push in"; a centre inside the box is
 //             pushed out through the nearest face
 //   closest   09-87/09-90: closest point on the boundary to the circle's centre (found by
