@@ -113,6 +113,7 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
     try {
         const game::ArenaGame game(assets);
         const std::vector<std::string> scenarios = select_shard(collect_scenarios(paths));
+        if (!report.empty()) create_report_folder(report);  // a bad --report is said before the run
         std::vector<ScenarioCheck> checks(scenarios.size());
         std::atomic<std::size_t> next{0};
         std::mutex print;

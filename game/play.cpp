@@ -220,6 +220,10 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                 if (done == total) err << "\r\033[K" << std::flush;
             };
         }
+        // The trace's file is made before the run, so that a path it cannot be written to is
+        // said at once, not after the whole run.
+        std::optional<AtomicFile> trace_file;
+        if (!trace_path.empty()) trace_file.emplace(trace_path);
         const ReplayResult result = [&] {
             try {
                 return replay(game, scenario, options);
@@ -228,7 +232,10 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                 throw;
             }
         }();
-        if (!trace_path.empty()) write_file_atomic(trace_path, format_trace(result, options.dump_every));
+        if (trace_file) {
+            trace_file->write(format_trace(result, options.dump_every));
+            trace_file->commit();
+        }
 
         std::int64_t passed = 0;
         for (const ExpectationResult& r : result.expectations) {

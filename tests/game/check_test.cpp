@@ -278,6 +278,17 @@ TEST_F(Check, AMissingTraceFailsAndAPlainCheckCreatesNothing) {
     EXPECT_EQ(listing(dir_.path()), std::vector<std::string>{"drive.scn"});
 }
 
+// A --report that cannot be made is said before any scenario runs (not after the whole
+// suite, where its exit 2 would also hide the suite's result).
+TEST_F(Check, AReportFolderThatCannotBeMadeIsSaidBeforeTheRun) {
+    const std::string s = scenario("drive.scn", kDrive);
+    std::ofstream(path("file")) << "x";
+    const RunResult r = check({s, "--report", path("file/report")});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "jostle check: " + path("file/report") + ": cannot create the report folder: Not a directory\n");
+}
+
 TEST_F(Check, AMissingScreenshotGoldenFails) {
     const std::string s = scenario("drive.scn", kDrive);
     bless(s);

@@ -344,6 +344,19 @@ TEST_F(Play, AnOutputThatCannotBeWrittenIsBadInput) {
     EXPECT_FALSE(fs::exists(trace));
 }
 
+// ... and is said before the run: no frame is rendered or written first (the frame folder the
+// run made is gone again), whichever output it is.
+TEST_F(Play, AnOutputThatCannotBeWrittenIsSaidBeforeTheRun) {
+    const std::string s = scenario("s.scn", kDrive);
+    for (const std::string flag : {"--trace", "--sheet", "--anim"}) {
+        const std::string frames = path("frames");
+        const RunResult r = play({s, "--out", frames, flag, dir_.path().string(), "--quiet"});
+        EXPECT_EQ(r.status, 2) << flag;
+        EXPECT_EQ(r.err, "jostle play: " + dir_.path().string() + ": cannot write: it is a folder\n") << flag;
+        EXPECT_FALSE(fs::exists(frames)) << flag;
+    }
+}
+
 // The game's own files are inputs too: an output naming a level or a sprite of the assets (by
 // any spelling of its path) is refused before the run, and the file is left as it was.
 TEST_F(Play, AnOutputNamingALevelOrASpriteOfTheAssetsIsRefused) {

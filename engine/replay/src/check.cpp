@@ -396,10 +396,14 @@ std::vector<std::string> select_shard(const std::vector<std::string>& scenarios)
     return out;
 }
 
-void write_report(const std::string& folder, const std::vector<ScenarioCheck>& checks) {
+void create_report_folder(const std::string& folder) {
     std::error_code ec;
     fs::create_directories(folder, ec);
     if (ec) throw InputError(SourceLocation{folder, 0, 0}, "cannot create the report folder: " + ec.message());
+}
+
+void write_report(const std::string& folder, const std::vector<ScenarioCheck>& checks) {
+    create_report_folder(folder);
     std::ostringstream html;
     html << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>jostle check report</title>\n"
             "<style>body{font-family:sans-serif;background:#1b1d22;color:#ddd} .scenario{margin:1em 0;padding:.5em;"

@@ -166,6 +166,10 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
                 options.anim_path, AnimationDesc{.delay_num = static_cast<int>(every), .delay_den = scenario.tick_rate});
         }
     }
+    // The sheet's file is made now, so that a path it cannot be written to is found before the
+    // run, not after it (a frame folder and the animation are made above for the same reason).
+    std::optional<AtomicFile> sheet_file;
+    if (!options.sheet_path.empty()) sheet_file.emplace(options.sheet_path);
     // Each sheet frame is drawn into the sheet when rendered, not kept (64 frames at full size
     // were most of a play run's memory).
     std::optional<ContactSheetBuilder> sheet_builder;
@@ -223,7 +227,9 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
         }
     }
     if (next_sheet > 0) {
-        write_png_atomic(options.sheet_path, sheet_builder->finish());
+        const std::vector<std::uint8_t> png = encode_png(sheet_builder->finish());
+        sheet_file->write(png.data(), png.size());
+        sheet_file->commit();
         result.files_written.push_back(options.sheet_path);
     }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

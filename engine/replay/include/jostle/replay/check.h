@@ -116,5 +116,8 @@ std::vector<std::string> select_shard(const std::vector<std::string>& scenarios)
 // tick and field changes, failed expectations, and expected / actual / diff images side by
 // side), the images it shows, and junit.xml with every scenario. Written atomically.
 void write_report(const std::string& folder, const std::vector<ScenarioCheck>& checks);
+// Makes the report's folder (as write_report does, with its InputError), so that a --report
+// that cannot be written is found before the scenarios are run.
+void create_report_folder(const std::string& folder);
 
 }  // namespace jostle
