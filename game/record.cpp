@@ -145,6 +145,9 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         if (const std::string asset = game.asset_named(out_path); !asset.empty()) {
             return usage(err, "-o: '" + out_path + "' is " + asset + " of the assets; give another path");
         }
+        // The output's file is made first, so that a path it cannot be written to is said before
+        // the script is read and recorded.
+        AtomicFile file(out_path);
         std::optional<Scenario> from;
         if (!from_path.empty()) {
             from = load_scenario(from_path, game.vocabulary());
@@ -180,7 +183,6 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         // when the replay is the recorded run, tick for tick.
         // (A target written in place, such as /dev/stdout on a pipe, cannot be read back: its
         // bytes are replayed from memory and sent only once they pass.)
-        AtomicFile file(out_path);
         std::string read_back = text;
         if (!file.in_place()) {
             file.write(text);

@@ -622,5 +622,16 @@ TEST_F(Record, AnOutputNamingALevelOrASpriteOfTheAssetsIsRefused) {
     }
 }
 
+// An -o that cannot be written is said before the script is read (from a terminal, before
+// anything is typed) and recorded: here the script's own error never comes.
+TEST_F(Record, AnOutputThatCannotBeWrittenIsSaidBeforeTheScriptIsRead) {
+    const std::string script = write("bad.script", "jump 3\n");
+    const std::string out = path("no/such/folder/s.scn");
+    const RunResult r = run_record({"--level", "arena", "-o", out, "--script", script});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "jostle record: " + out + ": cannot write: cannot create a file in " + path("no/such/folder") +
+                         ": No such file or directory\n");
+}
+
 }  // namespace
 }  // namespace jostle
