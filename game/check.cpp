@@ -105,6 +105,10 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             }
             continue;
         }
+        if (a == "--help" || a == "-h") {  // anywhere an option may stand, as right after the command
+            out << check_help();
+            return 0;
+        }
         if (a.size() > 1 && a.front() == '-') return usage(err, "unknown option '" + std::string(a) + "'");
         paths.emplace_back(a);
     }

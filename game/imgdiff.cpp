@@ -78,6 +78,9 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
                 }
                 options.max_differing_pixels = *n;
             }
+        } else if (a == "--help" || a == "-h") {  // anywhere an option may stand, as right after the command
+            out << imgdiff_help();
+            return 0;
         } else if (a.size() > 1 && a.front() == '-') {
             return usage(err, "unknown option '" + std::string(a) + "'");
         } else {

@@ -173,6 +173,9 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                 options.width = size->first;
                 options.height = size->second;
             }
+        } else if (a == "--help" || a == "-h") {  // anywhere an option may stand, as right after the command
+            out << play_help();
+            return 0;
         } else if (a.size() > 1 && a.front() == '-') {
             return usage(err, "unknown option '" + std::string(a) + "'");
         } else if (scenario_path.empty()) {

@@ -98,6 +98,10 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         const std::string_view a = args[i];
         if (a != "--level" && a != "-o" && a != "--out" && a != "--script" && a != "--seed" && a != "--tick-rate" &&
             a != "--from" && a != "--at" && a != "--assets") {
+            if (a == "--help" || a == "-h") {  // anywhere an option may stand, as right after the command
+                out << record_help();
+                return 0;
+            }
             if (a.size() > 1 && a.front() == '-') return usage(err, "unknown option '" + std::string(a) + "'");
             return usage(err, "unexpected argument '" + std::string(a) + "'");
         }

@@ -632,6 +632,10 @@ TEST_F(Check, UsageErrorsExitTwoWithTheirMessage) {
     EXPECT_EQ(help.status, 0);
     EXPECT_EQ(help.out, check_help());
     EXPECT_EQ(help.err, "");
+    // Anywhere an option may stand, as right after the command.
+    const RunResult later = test::run_jostle_binary({"check", s, "--jobs", "2", "-h"});
+    EXPECT_EQ(later.status, 0);
+    EXPECT_EQ(later.out, check_help());
 }
 
 // ---- --report --------------------------------------------------------------------------

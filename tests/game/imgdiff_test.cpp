@@ -88,6 +88,17 @@ TEST_F(Imgdiff, DifferentSizesDiffer) {
     EXPECT_EQ(o.out, "differ: sizes 16x8 and 17x8\n");
 }
 
+// --help (or -h) anywhere an option may stand prints the reference, as right after the command.
+TEST_F(Imgdiff, HelpAnywhereAnOptionMayStand) {
+    for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+             {path("a.png"), "--help"}, {path("a.png"), path("very.png"), "--tolerance", "3", "-h"}}) {
+        const Outcome o = run(args);
+        EXPECT_EQ(o.status, 0);
+        EXPECT_EQ(o.out, imgdiff_help());
+        EXPECT_EQ(o.err, "");
+    }
+}
+
 TEST_F(Imgdiff, BadUsageAndBadInputExitTwo) {
     const auto expect_error = [](const Outcome& o, const std::string& message) {
         EXPECT_EQ(o.status, 2);

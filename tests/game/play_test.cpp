@@ -125,6 +125,14 @@ TEST_F(Play, HelpExitsZero) {
     EXPECT_EQ(r.out, play_help());
     EXPECT_EQ(r.out.rfind("usage: jostle play SCENARIO", 0), 0u);
     EXPECT_EQ(r.err, "");
+    // Anywhere an option may stand (not as an option's value: `--trace -h` names a file).
+    for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+             {"play", "s.scn", "--quiet", "--help"}, {"play", "s.scn", "-h", "--every", "0"}}) {
+        const RunResult later = run_jostle(args);
+        EXPECT_EQ(later.status, 0) << args[2];
+        EXPECT_EQ(later.out, play_help());
+        EXPECT_EQ(later.err, "");
+    }
 }
 
 TEST_F(Play, BadInputExitsTwoNamingFileAndLine) {

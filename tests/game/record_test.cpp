@@ -302,6 +302,10 @@ TEST_F(Record, HelpExitsZero) {
     EXPECT_EQ(r.out, record_help());
     EXPECT_THAT(r.out, StartsWith("usage: jostle record --level LEVEL -o SCENARIO"));
     EXPECT_EQ(r.err, "");
+    // Anywhere an option may stand, as right after the command.
+    const RunResult later = test::run_jostle_binary({"record", "--level", "arena", "-h"});
+    EXPECT_EQ(later.status, 0);
+    EXPECT_EQ(later.out, record_help());
 }
 
 TEST_F(Record, ScriptFromStdinAndFromAFileWriteTheSameBytes) {
