@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <tuple>
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
@@ -201,21 +202,10 @@ public:
         return std::nullopt;
     }
 
-    bool entity_named(std::string_view name) const override {
-        // The level's things and the player, then bullet_N and ball_N for those fired so far.
-        if (name == "player") return true;
-        for (const LevelThing& t : level_.things) {
-            if (t.name == name) return true;
-        }
-        const auto numbered = [&](std::string_view prefix, std::int64_t fired) {
-            if (!name.starts_with(prefix)) return false;
-            const std::string_view digits = name.substr(prefix.size());
-            std::int64_t n = 0;
-            const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
-            return ec == std::errc{} && end == digits.data() + digits.size() && digits[0] != '0' && n >= 1 && n <= fired;
-        };
-        return numbered("bullet_", shots_) || numbered("ball_", balls_);
-    }
+    // The level's things and the player, then bullet_N and ball_N for the first N fired: those
+    // fired so far, or any.
+    bool entity_named(std::string_view name) const override { return named(name, shots_, balls_); }
+    bool entity_name_possible(std::string_view name) const override { return named(name, INT64_MAX, INT64_MAX); }
 
     std::int64_t count(std::string_view kind) const override {
         std::int64_t n = 0;
@@ -336,6 +326,21 @@ public:
     }
 
 private:
+    bool named(std::string_view name, std::int64_t shots, std::int64_t balls) const {
+        if (name == "player") return true;
+        for (const LevelThing& t : level_.things) {
+            if (t.name == name) return true;
+        }
+        const auto numbered = [&](std::string_view prefix, std::int64_t fired) {
+            if (!name.starts_with(prefix)) return false;
+            const std::string_view digits = name.substr(prefix.size());
+            std::int64_t n = 0;
+            const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+            return ec == std::errc{} && end == digits.data() + digits.size() && digits[0] != '0' && n >= 1 && n <= fired;
+        };
+        return numbered("bullet_", shots) || numbered("ball_", balls);
+    }
+
     std::size_t add(Thing thing, EntityDesc desc) {
         if (world_.entity_count() >= static_cast<std::size_t>(kMaxEntities)) {
             throw InputError(SourceLocation{level_path_, 0, 0},
@@ -550,10 +555,19 @@ std::string ArenaGame::level_path(const std::string& level) const { return asset
 
 std::string ArenaGame::asset_named(const std::string& path) const {
     for (const std::string& level : vocabulary_.levels) {
-        if (same_file(path, level_path(level))) return "the level '" + level + "'";
+        if (same_file(path, level_path(level))) return "is the level '" + level + "' of the assets";
     }
     for (const std::string& name : sprite_names(assets_dir_)) {
-        if (same_file(path, assets_dir_ + "/sprites/" + name + ".png")) return "the sprite '" + name + "'";
+        if (same_file(path, assets_dir_ + "/sprites/" + name + ".png")) return "is the sprite '" + name + "' of the assets";
+    }
+    // A new file there would be read as a level or sprite too (and change every level-hash).
+    const std::filesystem::path p(path);
+    const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    std::error_code ec;
+    for (const auto& [sub, extension, kind] : {std::tuple{"/levels", ".level", "level"}, std::tuple{"/sprites", ".png", "sprite"}}) {
+        if (p.extension() == extension && std::filesystem::equivalent(folder, assets_dir_ + sub, ec)) {
+            return "would be a new " + std::string(kind) + " '" + p.stem().string() + "' of the assets";
+        }
     }
     return "";
 }

@@ -52,9 +52,10 @@ public:
 
     const std::string& assets_dir() const { return assets_dir_; }
     std::string level_path(const std::string& level) const;
-    // What `path` is among the files the game reads, "the level 'arena'" or "the sprite 'ship'"
-    // (same_file: the same file by any path or link), or "" when it is none of them. Commands
-    // refuse an output that names one, before they run.
+    // What `path` is among the files the game reads: "is the level 'arena' of the assets", "is
+    // the sprite 'ship' of the assets" (same_file: by any path or link), "would be a new level
+    // 'x' of the assets" (NAME.level in the levels folder; NAME.png in the sprites folder), or ""
+    // when none. Commands refuse an output that names one, before they run.
     std::string asset_named(const std::string& path) const;
 
 private:

@@ -63,7 +63,7 @@ file is left.
 
 exit status: 0 every scenario passed (or was updated), 1 a regression (with --update: an
 expectation failed, which new goldens cannot fix), 2 bad usage or input,
-130 (143) stopped by Ctrl-C (SIGTERM).
+130 (143, 129) stopped by Ctrl-C (SIGTERM, SIGHUP).
 )";
 }
 

@@ -123,7 +123,7 @@ Ctrl-C (or SIGTERM) stops between ticks: frames already written are complete, an
 animation, sheet or trace is not written.
 
 exit status: 0 the run's expectations passed, 1 one failed, 2 bad usage or bad input,
-130 (143) stopped by Ctrl-C (SIGTERM).
+130 (143, 129) stopped by Ctrl-C (SIGTERM, SIGHUP).
 )";
 }
 
@@ -201,8 +201,19 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
         for (const auto& [flag, path] : {std::pair{"--trace", &trace_path}, std::pair{"--sheet", &options.sheet_path},
                                          std::pair{"--anim", &options.anim_path}}) {
             if (const std::string asset = game.asset_named(*path); !asset.empty()) {
-                return usage(err, std::string(flag) + ": '" + *path + "' is " + asset + " of the assets; give another path");
+                return usage(err, std::string(flag) + ": '" + *path + "' " + asset + "; give another path");
             }
+        }
+        // A trace or sheet path that cannot be written to is said now, not after the run (the
+        // animation's file and the frame folder are made when the run starts). One in a folder
+        // that does not exist yet waits for the end when there is an --out folder: the run may
+        // be making that folder.
+        for (const std::string* path : {&trace_path, &options.sheet_path}) {
+            if (path->empty()) continue;
+            std::error_code ec;
+            const std::filesystem::path parent = std::filesystem::path(*path).parent_path();
+            if (!options.out_dir.empty() && !parent.empty() && !std::filesystem::exists(parent, ec)) continue;
+            check_writable(*path);
         }
         const Scenario scenario = load_scenario(scenario_path, game.vocabulary());
         const std::string hash = game.level_hash(scenario.level);
@@ -223,10 +234,6 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                 if (done == total) err << "\r\033[K" << std::flush;
             };
         }
-        // The trace's file is made before the run, so that a path it cannot be written to is
-        // said at once, not after the whole run.
-        std::optional<AtomicFile> trace_file;
-        if (!trace_path.empty()) trace_file.emplace(trace_path);
         const ReplayResult result = [&] {
             try {
                 return replay(game, scenario, options);
@@ -235,10 +242,7 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                 throw;
             }
         }();
-        if (trace_file) {
-            trace_file->write(format_trace(result, options.dump_every));
-            trace_file->commit();
-        }
+        if (!trace_path.empty()) write_file_atomic(trace_path, format_trace(result, options.dump_every));
 
         std::int64_t passed = 0;
         for (const ExpectationResult& r : result.expectations) {

@@ -84,7 +84,7 @@ options:
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
 
 exit status: 0 written and verified, 1 the read-back replay differed (nothing written),
-2 bad usage or bad input, 130 (143) stopped by Ctrl-C (SIGTERM): nothing written.
+2 bad usage or bad input, 130 (143, 129) stopped by Ctrl-C (SIGTERM, SIGHUP): nothing written.
 )";
 }
 
@@ -147,11 +147,10 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
     try {
         const game::ArenaGame game(assets);
         if (const std::string asset = game.asset_named(out_path); !asset.empty()) {
-            return usage(err, "-o: '" + out_path + "' is " + asset + " of the assets; give another path");
+            return usage(err, "-o: '" + out_path + "' " + asset + "; give another path");
         }
-        // The output's file is made first, so that a path it cannot be written to is said before
-        // the script is read and recorded.
-        AtomicFile file(out_path);
+        // A path -o cannot be written to is said before the script is read (typed) and recorded.
+        check_writable(out_path);
         std::optional<Scenario> from;
         if (!from_path.empty()) {
             from = load_scenario(from_path, game.vocabulary());
@@ -187,6 +186,7 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         // when the replay is the recorded run, tick for tick.
         // (A target written in place, such as /dev/stdout on a pipe, cannot be read back: its
         // bytes are replayed from memory and sent only once they pass.)
+        AtomicFile file(out_path);
         std::string read_back = text;
         if (!file.in_place()) {
             file.write(text);

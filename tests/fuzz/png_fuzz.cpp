@@ -1,7 +1,9 @@
 // tests/fuzz/png_fuzz.cpp: fuzzes decode_png (engine/render/src/png_io.cpp), the reader behind
 // read_png (sprites, `jostle imgdiff`, query masks). Bad bytes must be an InputError naming the
 // input; a decoded image must be within the documented limits with exactly width*height*4 bytes,
-// and (when small) survive jostle's own encoder and the reader again unchanged.
+// and (when small) survive jostle's own encoder and the reader again unchanged; a rectangle of it,
+// chosen by the input's bytes, encodes in place (as an animation frame does) to the bytes of
+// its copy, with both encoders.
 #include <cstring>
 #include <span>
 #include <string>
@@ -9,6 +11,7 @@
 #include "fuzz_support.h"
 #include "jostle/core/error.h"
 #include "jostle/render/png_io.h"
+#include "pixel_rows.h"  // engine/render/src (private): detail::encode_png_rows
 
 using jostle::fuzz::fuzz_fail;
 
@@ -31,6 +34,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const jostle::Image again = jostle::decode_png(png, "re-encoded.png");
         if (again.width != image.width || again.height != image.height || again.rgba != image.rgba) {
             fuzz_fail("encode_png then decode_png changed the image");
+        }
+        // The rectangle from the input's last bytes (any rectangle inside the image).
+        const auto byte = [&](std::size_t k) { return size > k ? static_cast<int>(data[size - 1 - k]) : 0; };
+        const int x = byte(0) % image.width, y = byte(1) % image.height;
+        const int w = 1 + byte(2) % (image.width - x), h = 1 + byte(3) % (image.height - y);
+        jostle::Image copy;
+        copy.width = w;
+        copy.height = h;
+        for (int row = y; row < y + h; ++row) {
+            const auto* first = image.rgba.data() + (static_cast<std::size_t>(row) * static_cast<std::size_t>(image.width) +
+                                                     static_cast<std::size_t>(x)) * 4;
+            copy.rgba.insert(copy.rgba.end(), first, first + static_cast<std::size_t>(w) * 4);
+        }
+        for (const jostle::PngEncoding& e : {jostle::PngEncoding{}, jostle::PngEncoding{.encoder = jostle::PngEncoder::libpng}}) {
+            if (jostle::detail::encode_png_rows(jostle::detail::rows_of(image, x, y, w, h), e) != jostle::encode_png(copy, e)) {
+                fuzz_fail("a rectangle encoded in place differs from its copy encoded");
+            }
         }
     }
     return 0;

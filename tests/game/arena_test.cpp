@@ -251,6 +251,11 @@ TEST_F(Arena, EntityNamedKnowsEveryNameTheRunHasHad) {
     for (int t = 1; t < 89 && sim->entity_position("bullet_1"); ++t) sim->tick(InputFrame{});
     EXPECT_FALSE(sim->entity_position("bullet_1").has_value());
     EXPECT_TRUE(sim->entity_named("bullet_1"));  // gone, but it was there
+    // Names the run can give at some time, and those it never gives.
+    for (const char* name : {"player", "left", "bullet_1", "bullet_99999", "ball_7"}) EXPECT_TRUE(sim->entity_name_possible(name)) << name;
+    for (const char* name : {"nobody", "bullet_0", "bullet_01", "ball_", "ball_x", "Player"}) {
+        EXPECT_FALSE(sim->entity_name_possible(name)) << name;
+    }
 }
 
 TEST_F(Arena, TappingFireInsideTheCooldownDoesNothing) {

@@ -210,6 +210,19 @@ TEST_F(Interrupt, PlayInterruptedLeavesOnlyWholeFrames) {
     EXPECT_GT(interrupted, 0);
 }
 
+// The terminal closing (SIGHUP) stops a run as Ctrl-C does: exit 129, only whole files.
+TEST_F(Interrupt, SighupStopsARunCleanly) {
+    std::ofstream(dir_.path() / "script.txt") << "hold up 200000\n";
+    const fs::path scn = dir_.path() / "out.scn";
+    const test::RunResult r = test::run_jostle_binary(
+        {"record", "--assets", kAssets, "--level", "arena", "-o", scn.string(), "--script", dir_.file("script.txt")},
+        "/dev/null", "", 300, -1, SIGHUP);
+    EXPECT_EQ(r.status, 129);
+    EXPECT_EQ(r.err, "jostle: interrupted by SIGHUP: stopped; files it finished are complete, unfinished ones were removed\n");
+    EXPECT_FALSE(fs::exists(scn));
+    EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{});
+}
+
 TEST_F(Interrupt, RecordInterruptedWritesNothing) {
     std::ofstream(dir_.path() / "script.txt") << "hold up 200000\n";
     const fs::path scn = dir_.path() / "out.scn";

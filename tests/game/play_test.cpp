@@ -352,6 +352,35 @@ TEST_F(Play, AnOutputThatCannotBeWrittenIsBadInput) {
     EXPECT_FALSE(fs::exists(trace));
 }
 
+// An --out folder the run makes may hold the other outputs (they are checked at the end there).
+TEST_F(Play, OutputsMayGoInTheOutFolderTheRunMakes) {
+    const std::string s = scenario("s.scn", kDrive);
+    const fs::path run = dir_.path() / "run";
+    const RunResult r = play({s, "--out", run.string(), "--frames", "0-2", "--trace", (run / "t.trace").string(), "--sheet",
+                              (run / "sheet.png").string(), "--anim", (run / "a.png").string(), "--quiet"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::file_names(run), (std::vector<std::string>{"a.png", "frame_000000.png", "frame_000001.png",
+                                                               "frame_000002.png", "sheet.png", "t.trace"}));
+}
+
+// An expectation naming an entity the game never gives is refused before the run: no frame
+// is written first.
+TEST_F(Play, AMisspeltEntityIsRefusedBeforeTheRun) {
+    const std::string s = scenario("s.scn", "0-9 up\nat 9 expect plyer alive\nat 10 end\n");
+    const std::string frames = path("frames");
+    const RunResult r = play({s, "--out", frames, "--quiet"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "jostle play: " + s + ":8: unknown entity 'plyer': no entity of this run can have that name (the dumps "
+                     "of 'jostle play --trace' name every entity)\n");
+    EXPECT_FALSE(fs::exists(frames));
+    // One the game gives, but not by then (no shot fired): refused at its tick.
+    const std::string early = scenario("early.scn", "0-9 up\nat 9 expect bullet_1 gone\nat 10 end\n");
+    const RunResult e = play({early, "--quiet"});
+    EXPECT_EQ(e.status, 2);
+    EXPECT_EQ(e.err, "jostle play: " + early + ":8: no entity named 'bullet_1' has been in the run by tick 9 (a misspelt "
+                     "name? the dumps of 'jostle play --trace' name every entity)\n");
+}
+
 // ... and is said before the run: no frame is rendered or written first (the frame folder the
 // run made is gone again), whichever output it is.
 TEST_F(Play, AnOutputThatCannotBeWrittenIsSaidBeforeTheRun) {
@@ -386,6 +415,15 @@ TEST_F(Play, AnOutputNamingALevelOrASpriteOfTheAssetsIsRefused) {
     }
     EXPECT_EQ(test::read_text(level), level_bytes);
     EXPECT_EQ(test::read_text(sprite), sprite_bytes);
+    // A new file there would be read as a level or a sprite too.
+    for (const auto& [flag, file, what] : {std::tuple{"--trace", "levels/new.level", "a new level 'new'"},
+                                           std::tuple{"--sheet", "sprites/sheet.png", "a new sprite 'sheet'"}}) {
+        const std::string output = (assets / file).string();
+        const RunResult r = run_jostle({"play", s, "--assets", assets.string(), flag, output, "--quiet"});
+        EXPECT_EQ(r.status, 2) << file;
+        EXPECT_EQ(r.err, usage_error(std::string(flag) + ": '" + output + "' would be " + what + " of the assets; give another path"));
+        EXPECT_FALSE(fs::exists(output));
+    }
 }
 
 }  // namespace

@@ -593,6 +593,19 @@ TEST_F(Record, ANoteForAKeptExpectationNamesTheFileItCameFrom) {
                      "found shots = 0\n");
 }
 
+// An expectation kept by --from that names an entity the run has not had by its tick is bad
+// input at its line in the --from file (not in the output, which is never written).
+TEST_F(Record, AKeptExpectationOnAnEntityNotYetThereIsBadInputInItsFile) {
+    const std::string old_scn = write("old.scn", header() + "0-9 up\nat 5 expect bullet_1 gone\nat 10 end\n");
+    const std::string more = write("more.script", "wait 1\n");
+    const std::string out = path("new.scn");
+    const RunResult r = run_record({"--from", old_scn, "--at", "8", "-o", out, "--script", more});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "jostle record: " + old_scn + ":9: no entity named 'bullet_1' has been in the run by tick 5 (a misspelt "
+                     "name? the dumps of 'jostle play --trace' name every entity)\n");
+    EXPECT_FALSE(fs::exists(out));
+}
+
 // A scenario holds at most kMaxScenarioTicks ticks: a longer script is refused at its line
 // before anything is played, and a scenario that ends exactly at the cap reads back.
 TEST_F(Record, AScriptLongerThanAScenarioCanBeIsRefusedAtItsLine) {

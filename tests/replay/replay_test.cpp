@@ -50,6 +50,9 @@ public:
     bool entity_named(std::string_view name) const override {
         return name == "player" || name == "half_pixel" || (name == "ghost" && ticks_ > 5);
     }
+    bool entity_name_possible(std::string_view name) const override {
+        return name == "player" || name == "half_pixel" || name == "ghost";
+    }
     std::int64_t count(std::string_view kind) const override { return kind == "rock" ? ticks_ : 0; }
     std::optional<double> variable(std::string_view name) const override {
         if (name == "score") return 10.0 * static_cast<double>(ticks_);
@@ -237,15 +240,20 @@ TEST_F(Replay, ExpectationsNamingWhatTheGameDoesNotHaveAreBadInputBeforeAnyTick)
               "s.scn:7: unknown game variable 'lives' (expected one of: score, half)");
     EXPECT_EQ(error_of(scenario("at 2 expect event boom\nat 5 expect event bam\n"), o),
               "s.scn:8: unknown event 'bam' (expected one of: boom, bang)");
+    // An entity name the game never gives (a typo would make `gone` pass).
+    EXPECT_EQ(error_of(scenario("0 a\nat 9 expect playr gone\n"), o),
+              "s.scn:8: unknown entity 'playr': no entity of this run can have that name (the dumps of 'jostle play "
+              "--trace' name every entity)");
     EXPECT_TRUE(log_.inputs.empty());  // refused before the first tick
 }
 
-// Entities come and go during a run, so an entity's name is checked at the expectation's tick:
-// one that no entity has had by then is a typo (it would make `gone` pass), not a check.
+// Entities come and go during a run, so a name the game can give is checked again at the
+// expectation's tick: one that no entity has had by then cannot be met (`gone` would pass).
 TEST_F(Replay, AnEntityNoEntityHasHadByTheExpectationsTickIsBadInput) {
     const ReplayOptions o = null_options();
     const std::string hint = " (a misspelt name? the dumps of 'jostle play --trace' name every entity)";
-    EXPECT_EQ(error_of(scenario("at 2 expect playr gone\n"), o), "s.scn:7: no entity named 'playr' has been in the run by tick 2" + hint);
+    EXPECT_EQ(error_of(scenario("at 2 expect ghost gone\n"), o), "s.scn:7: no entity named 'ghost' has been in the run by tick 2" + hint);
+    EXPECT_EQ(log_.inputs.size(), 3u);  // found at its tick
     EXPECT_EQ(error_of(scenario("at 1 expect player alive\nat 3 expect ghost alive\n"), o),
               "s.scn:8: no entity named 'ghost' has been in the run by tick 3" + hint);
     EXPECT_EQ(error_of(scenario("at 4 expect ghost in 0 0 1 1\n"), o), "s.scn:7: no entity named 'ghost' has been in the run by tick 4" + hint);

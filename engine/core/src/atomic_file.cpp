@@ -176,6 +176,12 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
     file.commit();
 }
 
+void check_writable(const std::string& path) {
+    std::string resolved;
+    if (target_of(path, resolved) == Target::stream) return;
+    const AtomicFile probe(path);
+}
+
 bool same_file(const std::string& output, const std::string& other) {
     if (output.empty() || other.empty()) return false;
     struct stat a {};

@@ -24,12 +24,13 @@ extern "C" void on_signal(int sig) {
     }
 }
 
-struct sigaction g_previous_int, g_previous_term;
+struct sigaction g_previous_int, g_previous_term, g_previous_hup;
 bool g_installed = false;
 
 std::string signal_name(int sig) {
     if (sig == SIGINT) return "SIGINT";
     if (sig == SIGTERM) return "SIGTERM";
+    if (sig == SIGHUP) return "SIGHUP";
     return "signal " + std::to_string(sig);
 }
 
@@ -48,12 +49,15 @@ InterruptHandler::InterruptHandler() {
     action.sa_flags = 0;
     sigaction(SIGINT, &action, &g_previous_int);
     sigaction(SIGTERM, &action, &g_previous_term);
+    // The terminal closing (SIGHUP) stops a run as cleanly as Ctrl-C does.
+    sigaction(SIGHUP, &action, &g_previous_hup);
     g_installed = true;
 }
 
 InterruptHandler::~InterruptHandler() {
     sigaction(SIGINT, &g_previous_int, nullptr);
     sigaction(SIGTERM, &g_previous_term, nullptr);
+    sigaction(SIGHUP, &g_previous_hup, nullptr);
     g_installed = false;
     g_signal.store(0);  // a later run in this process starts afresh
 }

@@ -273,12 +273,13 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
         }
         lines.push_back("updated " + c.path + ": " + what);
     }
-    // Phase 2: renames and removals, with Ctrl-C and SIGTERM held until they are all done.
+    // Phase 2: renames and removals, with Ctrl-C, SIGTERM and SIGHUP held until they are all done.
     throw_if_interrupted();
     sigset_t block, previous;
     sigemptyset(&block);
     sigaddset(&block, SIGINT);
     sigaddset(&block, SIGTERM);
+    sigaddset(&block, SIGHUP);
     sigprocmask(SIG_BLOCK, &block, &previous);
     try {
         for (auto& file : files) file->commit();

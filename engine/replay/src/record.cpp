@@ -123,16 +123,23 @@ Recording record(const Game& game, const RecordDesc& desc, std::span<const Scrip
         out.hashes.push_back(sim->state_hash());
     };
     if (desc.from != nullptr) {
-        for (std::int64_t t = 0; t < desc.keep_ticks; ++t) play(desc.from->input(t));
-        for (const Screenshot& shot : desc.from->screenshots) {
-            if (shot.tick < desc.keep_ticks) s.screenshots.push_back(shot);
-        }
         for (const Expectation& e : desc.from->expectations) {
-            if (e.tick < desc.keep_ticks) {
-                validate_expectation(e, *sim, desc.from->source);
+            if (e.tick < desc.keep_ticks) validate_expectation(e, *sim, desc.from->source);
+        }
+        // The kept expectations (sorted by tick) are checked for their entities at their tick,
+        // against the file they came from.
+        std::size_t next = 0;
+        for (std::int64_t t = 0; t < desc.keep_ticks; ++t) {
+            play(desc.from->input(t));
+            for (; next < desc.from->expectations.size() && desc.from->expectations[next].tick == t; ++next) {
+                const Expectation& e = desc.from->expectations[next];
+                validate_entity_name(e, *sim, desc.from->source);
                 s.expectations.push_back(e);
                 out.expectation_sources.push_back(desc.from->source);
             }
+        }
+        for (const Screenshot& shot : desc.from->screenshots) {
+            if (shot.tick < desc.keep_ticks) s.screenshots.push_back(shot);
         }
     }
     for (const ScriptStep& step : script) {

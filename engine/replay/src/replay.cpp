@@ -97,6 +97,11 @@ void validate_expectation(const Expectation& e, const Simulation& sim, const std
         known = sim.events();
         what = "event";
     } else {
+        if (!sim.entity_name_possible(e.name)) {
+            throw InputError(SourceLocation{source, e.line, 0},
+                             "unknown entity '" + e.name +
+                                 "': no entity of this run can have that name (the dumps of 'jostle play --trace' name every entity)");
+        }
         return;
     }
     if (std::find(known.begin(), known.end(), e.name) == known.end()) {
@@ -166,10 +171,6 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
                 options.anim_path, AnimationDesc{.delay_num = static_cast<int>(every), .delay_den = scenario.tick_rate});
         }
     }
-    // The sheet's file is made now, so that a path it cannot be written to is found before the
-    // run, not after it (a frame folder and the animation are made above for the same reason).
-    std::optional<AtomicFile> sheet_file;
-    if (!options.sheet_path.empty()) sheet_file.emplace(options.sheet_path);
     // Each sheet frame is drawn into the sheet when rendered, not kept (64 frames at full size
     // were most of a play run's memory).
     std::optional<ContactSheetBuilder> sheet_builder;
@@ -227,9 +228,7 @@ ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOpti
         }
     }
     if (next_sheet > 0) {
-        const std::vector<std::uint8_t> png = encode_png(sheet_builder->finish());
-        sheet_file->write(png.data(), png.size());
-        sheet_file->commit();
+        write_png_atomic(options.sheet_path, sheet_builder->finish());
         result.files_written.push_back(options.sheet_path);
     }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

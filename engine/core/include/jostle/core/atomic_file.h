@@ -53,6 +53,12 @@ private:
 // The whole file at once: AtomicFile, write, commit.
 void write_file_atomic(const std::string& path, std::string_view bytes);
 
+// Makes, and at once removes, the temporary file AtomicFile(path) would write, so that a path
+// an output cannot be written to is AtomicFile's InputError before a long run instead of after
+// it, with nothing left behind. A target that is not a regular file (a device, a pipe) is not
+// opened: opening a pipe can block, or end its reader's input.
+void check_writable(const std::string& path);
+
 // Whether writing `output` would replace the file `other` names (an input, or another
 // output), so that a command can refuse before it starts: both name one existing regular file
 // (through links and different spellings), or neither exists yet and they are the same path

@@ -1,6 +1,7 @@
-// jostle/core/interrupt.h: Ctrl-C and SIGTERM as a request to stop at the next safe point.
+// jostle/core/interrupt.h: Ctrl-C, SIGTERM and SIGHUP (the terminal closing) as a request to
+// stop at the next safe point.
 //
-// While an InterruptHandler is alive, SIGINT and SIGTERM only record the signal; a second
+// While an InterruptHandler is alive, SIGINT, SIGTERM and SIGHUP only record the signal; a second
 // signal kills the process at once (the default action), for when stopping takes too long.
 // Long loops call throw_if_interrupted() at points where stopping leaves nothing half done
 // (between ticks, between files); it throws Interrupted, and unwinding removes every unfinished
@@ -23,7 +24,7 @@ private:
     int signal_;
 };
 
-// Installs the handlers for SIGINT and SIGTERM; the destructor restores the previous ones.
+// Installs the handlers for SIGINT, SIGTERM and SIGHUP; the destructor restores the previous ones.
 // One at a time (they are process-wide).
 class InterruptHandler {
 public:

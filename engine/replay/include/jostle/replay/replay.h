@@ -61,12 +61,14 @@ struct ReplayResult {
 };
 
 // Plays `scenario` with `game`. Throws InputError when the level is bad, an expectation names
-// a kind, variable or event the game does not have (before the first tick) or an entity no
-// entity of the run has had by the expectation's tick, or an output cannot be written.
+// a kind, variable, event or entity name the game does not have (before the first tick) or an
+// entity no entity of the run has had by the expectation's tick (bullet_9 before the ninth
+// shot), or an output cannot be written.
 ReplayResult replay(const Game& game, const Scenario& scenario, const ReplayOptions& options = {});
 
-// An expectation must name kinds, variables and events the game has: a typo is bad input
-// (InputError at source:line), not a failing check. replay() checks every expectation so.
+// An expectation must name kinds, variables and events the game has, and an entity name the
+// game can give in this run: a typo is bad input (InputError at source:line), not a failing
+// check. replay() checks every expectation so, before the first tick.
 void validate_expectation(const Expectation& e, const Simulation& sim, const std::string& source);
 
 // An expectation about an entity (in, alive, gone) must name one that has lived in the run by

@@ -57,8 +57,10 @@ public:
     // such variable); whether the game reported the named event so far.
     virtual std::optional<Vec2> entity_position(std::string_view name) const = 0;
     // Whether an entity of that name has lived at some time in the run so far (false for a
-    // name no entity has had: a misspelt expectation).
+    // name no entity has had: a misspelt expectation), and whether one ever can in this run
+    // (false for a name the game never gives: refused before the first tick).
     virtual bool entity_named(std::string_view name) const = 0;
+    virtual bool entity_name_possible(std::string_view name) const = 0;
     virtual std::int64_t count(std::string_view kind) const = 0;
     virtual std::optional<double> variable(std::string_view name) const = 0;
     virtual bool event_happened(std::string_view name) const = 0;
