@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "jostle/core/error.h"
+#include "jostle/core/interrupt.h"
 
 namespace jostle {
 
@@ -54,6 +55,9 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
             const int fd = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
             if (fd < 0) {
                 const int e = errno;
+                // Ctrl-C while a named pipe waited for its reader: the run was stopped, not the
+                // output refused.
+                if (e == EINTR) throw_if_interrupted();
                 fail(std::strerror(e));
             }
             file_ = ::fdopen(fd, "wb");
