@@ -58,7 +58,7 @@ Sharding: with TEST_TOTAL_SHARDS and TEST_SHARD_INDEX (or GTEST_TOTAL_SHARDS and
 GTEST_SHARD_INDEX) set, only scenario i with i % total == index is checked;
 TEST_SHARD_STATUS_FILE is touched.
 
-Ctrl-C (or SIGTERM) stops between ticks; an update then changes no golden, and no temporary
+Ctrl-C (SIGTERM, SIGHUP) stops between ticks; an update then changes no golden, and no temporary
 file is left.
 
 exit status: 0 every scenario passed (or was updated), 1 a regression (with --update: an

@@ -119,7 +119,7 @@ options:
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
 
 Files are written atomically: an interrupted run never leaves a half-written file.
-Ctrl-C (or SIGTERM) stops between ticks: frames already written are complete, an unfinished
+Ctrl-C (SIGTERM, SIGHUP) stops between ticks: frames already written are complete, an unfinished
 animation, sheet or trace is not written.
 
 exit status: 0 the run's expectations passed, 1 one failed, 2 bad usage or bad input,

@@ -223,6 +223,22 @@ TEST_F(Interrupt, SighupStopsARunCleanly) {
     EXPECT_EQ(temp_files(dir_.path()), std::vector<std::string>{});
 }
 
+// ... unless it is ignored, as under nohup: the run is to outlive the terminal.
+TEST_F(Interrupt, AnIgnoredSighupIsLeftIgnored) {
+    std::ofstream(dir_.path() / "script.txt") << "hold up 20000\n";
+    const fs::path scn = dir_.path() / "out.scn";
+    struct sigaction ignore {}, previous {};
+    ignore.sa_handler = SIG_IGN;
+    sigaction(SIGHUP, &ignore, &previous);  // inherited by the child, as nohup does
+    const test::RunResult r = test::run_jostle_binary(
+        {"record", "--assets", kAssets, "--level", "arena", "-o", scn.string(), "--script", dir_.file("script.txt")},
+        "/dev/null", "", 50, -1, SIGHUP);
+    sigaction(SIGHUP, &previous, nullptr);
+    EXPECT_TRUE(r.signalled);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(scn));
+}
+
 TEST_F(Interrupt, RecordInterruptedWritesNothing) {
     std::ofstream(dir_.path() / "script.txt") << "hold up 200000\n";
     const fs::path scn = dir_.path() / "out.scn";

@@ -49,8 +49,10 @@ InterruptHandler::InterruptHandler() {
     action.sa_flags = 0;
     sigaction(SIGINT, &action, &g_previous_int);
     sigaction(SIGTERM, &action, &g_previous_term);
-    // The terminal closing (SIGHUP) stops a run as cleanly as Ctrl-C does.
-    sigaction(SIGHUP, &action, &g_previous_hup);
+    // The terminal closing (SIGHUP) stops a run as cleanly as Ctrl-C does, unless it is
+    // ignored (nohup: the run is to outlive the terminal).
+    sigaction(SIGHUP, nullptr, &g_previous_hup);
+    if (g_previous_hup.sa_handler != SIG_IGN) sigaction(SIGHUP, &action, nullptr);
     g_installed = true;
 }
 

@@ -42,7 +42,7 @@ std::uint32_t get_u32(const std::uint8_t* p) {
     return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
 }
 
-// The IDAT payloads of a PNG file that encode_png made (trusted: well formed by
+// The IDAT payloads of a PNG file that the encoder made (trusted: well formed by
 // construction), as spans into the file's bytes (a frame's data is written from there, not
 // copied out first), and IHDR's data.
 struct PngChunks {
