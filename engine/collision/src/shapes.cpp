@@ -71,6 +71,8 @@ std::array<Vec2, 4> corners(const Aabb& box) {
 }
 
 namespace {
+// 09-36 gives an OBB by its 4 corners; jostle keeps centre, half extents and angle and makes
+// the corners from them: the centre plus and minus each turned half extent.
 std::array<Vec2, 4> box_corners(Vec2 center, Vec2 half, Rot q) {
     const Vec2 ux = rotate(q, Vec2{half.x, 0.0f});
     const Vec2 uy = rotate(q, Vec2{0.0f, half.y});

@@ -6,9 +6,9 @@
 //
 // COORDINATES
 //   Pixels, y pointing down (as in images). Angles in radians, positive from +x toward +y
-//   (clockwise on screen). Floats throughout (as in Box2D); no query reads global state,
-//   allocates, or depends on anything but its arguments, so results are reproducible (only
-//   building a Mask allocates).
+//   (clockwise on screen). Floats throughout (as in Box2D); no query allocates or depends on
+//   anything but its arguments (and the tests-only switches in detail::, which give the same
+//   answers), so results are reproducible (only building a Mask allocates).
 //
 // SHAPES (all closed: a shape contains its boundary)
 //   Aabb        {min, max}                   axis-aligned box, min <= max on both axes
@@ -85,7 +85,8 @@
 //             polygon's vertex mean, a segment's midpoint.
 //
 // MASKS
-//   Mask::from_rows({"..##", ".###"})      '#' set, '.' clear (no rows: a 0 x 0 mask)
+//   Mask::from_rows(rows)                  rows: std::string_views, '#' set, '.' clear (no
+//                                          rows: a 0 x 0 mask); nullopt and *error when bad
 //   Mask::from_alpha(rgba, w, h, t)        set where alpha > t
 //   Queries (mask.cpp): overlaps, first_overlap (the first shared world pixel in reading
 //   order: smallest y, then smallest x), count_overlap, collide (integer MTD), the same

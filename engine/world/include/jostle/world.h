@@ -49,9 +49,10 @@
 //                fat bounds (fattened) are re-made only when the bounds leave them; the
 //                candidate pairs are every pair whose fat bounds overlap, at least one of them
 //                moving, found all at once by a uniform grid over those bounds (faster than
-//                one tree query per body; a b2DynamicTree over the fat bounds answers World
-//                queries' and bullets' regions, catching up only when queried), sorted by
-//                (lower id, higher id).
+//                one tree query per body), or by one tree query per mover when fewer than 1
+//                in 16 colliders move (a tile map); a b2DynamicTree over the fat bounds also
+//                answers World queries' and bullets' regions, catching up only when queried.
+//                Sorted by (lower id, higher id).
 //   narrowphase  collide(A, B) from the collision module for each candidate (A is the lower
 //                id); mask pairs test bounds first, then pixels over the overlap, then the
 //                integer mask MTD. A pair in contact last step that now misses (a rounding
