@@ -134,6 +134,51 @@ TEST_F(Animation, RandomRunsRoundTripPixelForPixel) {
     }
 }
 
+// A frame's unchanged pixels are stored transparent and the rectangle drawn OVER the previous
+// frame, so two sprites far apart cost little more than their own pixels; a rectangle with a
+// changed pixel that is not opaque (OVER would blend it) is stored as it is, as the SOURCE.
+// Either way the viewer shows exactly the frames added.
+TEST_F(Animation, OpaqueChangesAreDrawnOverThePreviousFrameOthersReplaceIt) {
+    std::mt19937 rng(99);
+    Image base = solid(64, 48, 0, 0, 0);
+    for (std::size_t i = 0; i < base.rgba.size(); i += 4) {  // noise, opaque: it compresses badly
+        for (int c = 0; c < 3; ++c) base.rgba[i + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(rng());
+    }
+    set_pixel(base, 30, 20, 10, 20, 30, 128);  // one translucent pixel
+    std::vector<Image> frames{base};
+    const auto next = [&](int x, int y, std::uint8_t a) {
+        Image f = frames.back();
+        set_pixel(f, x, y, 200, 100, 50, a);
+        frames.push_back(f);
+    };
+    next(1, 1, 255);
+    frames.back().rgba[(46 * 64 + 62) * 4] ^= 0x55;  // and a second opaque change far away
+    next(5, 5, 77);     // a translucent change
+    next(30, 20, 255);  // the translucent pixel made opaque
+    next(7, 40, 0);     // an opaque pixel made transparent
+    AnimationWriter writer(path("over.png"));
+    for (const Image& f : frames) writer.add(f);
+    writer.finish();
+    const test::Apng apng = test::read_apng(path("over.png"));
+    ASSERT_EQ(apng.frames.size(), frames.size());
+    const int blend[] = {0, 1, 0, 1, 0};
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        EXPECT_EQ(apng.frames[i].canvas.rgba, frames[i].rgba) << "frame " << i;
+        EXPECT_EQ(apng.frames[i].blend_op, blend[i]) << "frame " << i;
+    }
+    EXPECT_EQ(apng.frames[1].width, 62);  // one rectangle around both changes
+    EXPECT_EQ(apng.frames[1].height, 46);
+    // The 62 x 46 rectangle of noise costs almost nothing beyond its two changed pixels.
+    AnimationWriter first_only(path("first.png"));
+    first_only.add(frames[0]);
+    first_only.finish();
+    AnimationWriter two(path("two.png"));
+    two.add(frames[0]);
+    two.add(frames[1]);
+    two.finish();
+    EXPECT_LT(fs::file_size(path("two.png")) - fs::file_size(path("first.png")), 200u);
+}
+
 TEST_F(Animation, ALongStillSplitsWhenItsDelayWouldOverflowSixteenBits) {
     const Image image = solid(4, 4, 1, 2, 3);
     AnimationWriter writer(path("still.png"), AnimationDesc{.delay_num = 30000, .delay_den = 1});

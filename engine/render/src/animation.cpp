@@ -25,6 +25,7 @@ namespace {
 constexpr std::uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 constexpr std::uint8_t kDisposeNone = 0;
 constexpr std::uint8_t kBlendSource = 0;
+constexpr std::uint8_t kBlendOver = 1;
 
 void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
     out.push_back(static_cast<std::uint8_t>(v >> 24));
@@ -106,6 +107,31 @@ std::optional<Rect> changed_rect(const Image& a, const Image& b) {
     return Rect{left, top, right - left + 1, bottom - top + 1};
 }
 
+// The pixels of rect that `frame` changes from `previous`, the others transparent black, for
+// a frame drawn with blend op OVER: a transparent pixel leaves the one below it, an opaque
+// one replaces it, so the viewer shows `frame` exactly, and the unchanged pixels compress
+// to almost nothing. nullopt when a changed pixel is not opaque (OVER would blend it).
+std::optional<Image> changes_only(const Image& previous, const Image& frame, const Rect& rect) {
+    Image out;
+    out.width = rect.width;
+    out.height = rect.height;
+    out.rgba.assign(static_cast<std::size_t>(rect.width) * static_cast<std::size_t>(rect.height) * 4, 0);
+    const std::size_t row_bytes = static_cast<std::size_t>(frame.width) * 4;
+    for (int y = 0; y < rect.height; ++y) {
+        const std::size_t from = static_cast<std::size_t>(rect.y + y) * row_bytes + static_cast<std::size_t>(rect.x) * 4;
+        const std::uint8_t* now = frame.rgba.data() + from;
+        const std::uint8_t* before = previous.rgba.data() + from;
+        std::uint8_t* to = out.rgba.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(rect.width) * 4;
+        for (int x = 0; x < rect.width; ++x) {
+            const std::uint32_t p = pixel(now, x);
+            if (p == pixel(before, x)) continue;
+            if (now[4 * x + 3] != 255) return std::nullopt;
+            std::memcpy(to + 4 * static_cast<std::size_t>(x), &p, 4);
+        }
+    }
+    return out;
+}
+
 // Copies rect's pixels of `from` into `to` (same size).
 void copy_rect(const Image& from, Image& to, const Rect& rect) {
     const std::size_t row_bytes = static_cast<std::size_t>(from.width) * 4;
@@ -126,9 +152,10 @@ struct AnimationWriter::Impl {
     bool finished = false;
     std::uint32_t sequence = 0;     // next fcTL/fdAT sequence number
     std::int64_t actl_offset = 0;   // where acTL's data starts, patched by finish()
-    // The frame waiting to be written: its rectangle, its encoded PNG and that PNG's IDAT
-    // payloads, and how many added frames it stands for (equal frames merge into it).
+    // The frame waiting to be written: its rectangle and blend op, its encoded PNG and that
+    // PNG's IDAT payloads, and how many added frames it stands for (equal frames merge into it).
     Rect pending_rect;
+    std::uint8_t pending_blend = kBlendSource;
     std::vector<std::uint8_t> pending_png;
     std::vector<std::span<const std::uint8_t>> pending_data;
     int pending_count = 0;
@@ -167,7 +194,7 @@ struct AnimationWriter::Impl {
         put_u16(fctl, static_cast<std::uint32_t>(desc.delay_num * pending_count));
         put_u16(fctl, static_cast<std::uint32_t>(desc.delay_den));
         fctl.push_back(kDisposeNone);
-        fctl.push_back(kBlendSource);
+        fctl.push_back(pending_blend);
         write_chunk("fcTL", fctl);
         for (const std::span<const std::uint8_t> data : pending_data) {
             if (stored == 0) {
@@ -183,9 +210,12 @@ struct AnimationWriter::Impl {
         pending_count = 0;
     }
 
-    // Encodes rect of frame, in place, as the pending frame.
-    void start_pending(const Image& frame, const Rect& rect) {
-        pending_png = detail::encode_png_rows(detail::rows_of(frame, rect.x, rect.y, rect.width, rect.height), desc.encoding);
+    // Encodes rect of frame as the pending frame: with `changes`, those pixels drawn OVER the
+    // previous frame; else rect of frame, read in place, drawn as the SOURCE.
+    void start_pending(const Image& frame, const Rect& rect, const std::optional<Image>& changes = std::nullopt) {
+        pending_png = changes ? encode_png(*changes, desc.encoding)
+                              : detail::encode_png_rows(detail::rows_of(frame, rect.x, rect.y, rect.width, rect.height), desc.encoding);
+        pending_blend = changes ? kBlendOver : kBlendSource;
         const PngChunks chunks = split_png(pending_png);
         if (added == 0) {
             write(kPngSignature);
@@ -236,7 +266,11 @@ void AnimationWriter::add(const Image& frame) {
     m.write_pending();
     // A frame that must be stored although nothing changed (the delay overflowed) redraws one
     // pixel: an fcTL needs a non-empty rectangle.
-    m.start_pending(frame, rect.value_or(Rect{0, 0, 1, 1}));
+    if (rect) {
+        m.start_pending(frame, *rect, changes_only(m.previous, frame, *rect));
+    } else {
+        m.start_pending(frame, Rect{0, 0, 1, 1});
+    }
     // The previous frame differs from this one only inside rect.
     if (rect) copy_rect(frame, m.previous, *rect);
     ++m.added;

@@ -3,9 +3,12 @@
 // browser plays it; viewers that know only PNG show the first frame.
 //
 // The file stays small for game footage, where most pixels stay put from frame to frame:
-// each frame after the first stores only the rectangle around the pixels that changed
-// (drawn over the previous frame with blend op SOURCE, dispose op NONE), and a frame equal to
-// the previous one stores nothing and lengthens the previous frame's display time instead.
+// each frame after the first stores only the rectangle around the pixels that changed, with
+// the pixels that did not change made transparent and the rectangle drawn over the previous
+// frame with blend op OVER (dispose op NONE), so that a few sprites moving far apart cost
+// little more than their own pixels; a rectangle with a changed pixel that is not opaque is
+// stored as it is, with blend op SOURCE. A frame equal to the previous one stores nothing
+// and lengthens the previous frame's display time instead.
 #pragma once
 
 #include <cstdint>
