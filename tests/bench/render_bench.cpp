@@ -474,8 +474,9 @@ void bm_pipeline(benchmark::State& state, Size size, int sprites, bool overlappe
 // The same kRunFrames frames (rendered beforehand; only the writing is timed) as PNG files
 // at jostle's encoding (the anchor) or as one APNG by AnimationWriter, which stores only the
 // rectangle around each frame's changed pixels. 4 of 100 sprites move and a HUD counts frames:
-// "clustered" keeps the movers together, "roaming" lets them spread over the image, and since
-// the changed rectangle is one box around every change, that is the APNG's worst case.
+// "clustered" keeps the movers together, "roaming" lets them spread over the image: the changed
+// rectangle is then one box around changes far apart, most of it unchanged pixels (stored
+// transparent, drawn OVER the previous frame).
 void bm_animation(benchmark::State& state, Inputs& inputs, Size size, bool cluster, bool apng) {
     guarded(state, [&] {
         const Inputs::Run& run = inputs.few_movers(size, cluster);
