@@ -104,11 +104,11 @@ TEST_F(Animation, ViewerShowsExactlyTheFramesAddedAndPlainPngReadersSeeTheFirst)
 
 TEST_F(Animation, RandomRunsRoundTripPixelForPixel) {
     std::mt19937 rng(1234);
-    for (int run = 0; run < 20; ++run) {
+    for (int run = 0; run < 40; ++run) {
         const int w = 1 + static_cast<int>(rng() % 40);
         const int h = 1 + static_cast<int>(rng() % 40);
         const int delay = 1 + static_cast<int>(rng() % 5);
-        Image image = solid(w, h, 0, 0, 0, 0);
+        Image image = solid(w, h, 0, 0, 0, run % 2 == 0 ? 255 : 0);
         std::vector<Image> frames;
         AnimationWriter writer(path("random.png"), AnimationDesc{.delay_num = delay, .delay_den = 30});
         const int count = 1 + static_cast<int>(rng() % 25);
@@ -116,9 +116,11 @@ TEST_F(Animation, RandomRunsRoundTripPixelForPixel) {
             const int changes = static_cast<int>(rng() % 4);  // 0: an equal frame
             for (int c = 0; c < changes; ++c) {
                 const auto v = static_cast<std::uint8_t>(rng());
+                // Half the runs opaque (frames drawn OVER), half any alpha (mostly SOURCE).
+                const auto alpha = run % 2 == 0 ? std::uint8_t{255} : static_cast<std::uint8_t>(rng());
                 set_pixel(image, static_cast<int>(rng() % static_cast<unsigned>(w)),
                           static_cast<int>(rng() % static_cast<unsigned>(h)), v, static_cast<std::uint8_t>(v * 3),
-                          static_cast<std::uint8_t>(v * 7), static_cast<std::uint8_t>(rng()));
+                          static_cast<std::uint8_t>(v * 7), alpha);
             }
             frames.push_back(image);
             writer.add(image);
