@@ -240,23 +240,26 @@ Image decode_png(std::span<const std::uint8_t> bytes, const std::string& name) {
     return decode_after_signature(r, name);
 }
 
-std::vector<std::uint8_t> encode_png(const Image& image, const PngEncoding& encoding) {
-    JOSTLE_ASSERT(image.width >= 1 && image.width <= kMaxImageSide && image.height >= 1 &&
-                      image.height <= kMaxImageSide,
+namespace {
+
+// The sides an encoder takes (an Image's, or a rectangle's of one).
+void check_sides(int width, int height) {
+    JOSTLE_ASSERT(width >= 1 && width <= kMaxImageSide && height >= 1 && height <= kMaxImageSide,
                   "encode_png: image sides must be in 1..kMaxImageSide");
-    JOSTLE_ASSERT(std::int64_t{image.width} * image.height <= kMaxImagePixels,
-                  "encode_png: image has more than kMaxImagePixels pixels");
+    JOSTLE_ASSERT(std::int64_t{width} * height <= kMaxImagePixels, "encode_png: image has more than kMaxImagePixels pixels");
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_png(const Image& image, const PngEncoding& encoding) {
+    check_sides(image.width, image.height);
     JOSTLE_ASSERT(image.rgba.size() == static_cast<std::size_t>(image.width) * 4 * static_cast<std::size_t>(image.height),
                   "encode_png: rgba.size() must be width * height * 4");
     return detail::encode_png_rows(detail::rows_of(image), encoding);
 }
 
 std::vector<std::uint8_t> detail::encode_png_rows(const PixelRows& image, const PngEncoding& encoding) {
-    JOSTLE_ASSERT(image.width >= 1 && image.width <= kMaxImageSide && image.height >= 1 &&
-                      image.height <= kMaxImageSide,
-                  "encode_png: image sides must be in 1..kMaxImageSide");
-    JOSTLE_ASSERT(std::int64_t{image.width} * image.height <= kMaxImagePixels,
-                  "encode_png: image has more than kMaxImagePixels pixels");
+    check_sides(image.width, image.height);
     JOSTLE_ASSERT(image.stride >= static_cast<std::size_t>(image.width) * 4, "encode_png: rows overlap");
     JOSTLE_ASSERT(encoding.compression_level >= -1 && encoding.compression_level <= 9,
                   "encode_png: compression level must be in 0..9 (or -1, libpng's default)");
