@@ -84,7 +84,8 @@ Manifold scalar_polygon_circle(const Polygon& a, const Circle& b) {
                                                    : N[face];
     if (cross(n_prev, u) < 0.0f || cross(u, n_next) < 0.0f) {
         const Vec2 nearer = dot(u, n_prev) >= dot(u, n_next) ? n_prev : n_next;
-        u = dot(nearer, u) > 0.0f ? nearer : N[face];  // a far vertex won a rounding tie
+        if (dot(nearer, u) > 0.0f) return hit(b.radius - dot(nearer, d), nearer);  // beside that face
+        u = N[face];  // a far vertex won a rounding tie
     }
     return hit(b.radius - len, u);
 }

@@ -315,11 +315,17 @@ template <class Nearest>
     if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) {
         if (const Manifold tied = tied_neighbour_contact(a, b, vertex, dist2, Vec2{face_normal[0], face_normal[1]}); tied.hit) return tied;
         const Vec2 nearer = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
+        // The centre is beside that face: on the vertex up to rounding, or along the face,
+        // which lost the largest-separation search to its neighbour by rounding (fuzz: an
+        // 11-gon sliver 0.013 px thick turned and moved to 1e4 in float, the centre 0.57 px
+        // along the face and 1.8 px from its line). The face's line gives the depth, as in
+        // the face case (the vertex lies on it); the vertex's distance understated it.
+        if (dot(nearer, n) > 0.0f) return polygon_circle_hit(b, b.radius - dot(nearer, Vec2{d[0], d[1]}), lanes_xy(nearer));
         // A vertex on the far side of a sliver can win the nearest-vertex search by rounding
         // (fuzz: a polygon 2e-7 px thick 2 px from the centre, where squared distances round
         // to the same float): its faces look away from the centre. The farthest face, the
         // one the centre is outside of, gives the direction then.
-        n4 = dot(nearer, n) > 0.0f ? lanes_xy(nearer) : face_normal;
+        n4 = face_normal;
     }
     return polygon_circle_hit(b, b.radius - len, n4);
 }
