@@ -508,6 +508,31 @@ TEST(Regression, AShallowSlidePastAVertexStopsAtFirstContact) {
     EXPECT_NEAR(h.t, 0.430308f, 1e-4f);
 }
 
+TEST(Regression, ACircleBesideASliversFaceThatLostTheSearchByRoundingTakesThatFacesDepth) {
+    // CI's collision fuzz: an 11-gon sliver 0.013 px thick (about the origin, then turned and
+    // moved to 1e4 in float, as the world places colliders; its faces are 2e-4 rad apart). The
+    // ball's centre is 1.8 px from its long side, 0.57 px along a face from that face's first
+    // vertex, but rounding gave the neighbouring face the larger separation; the centre is past
+    // that face's end, so the nearest vertex was taken, and its distance (1.907) gave the depth
+    // instead of the face's (1.804): the MTD left 0.1 px. The face beside the centre gives the
+    // depth now. (The fuzz target leaves such polygons to LIMITS since: this case stays here.)
+    const std::vector<Vec2> local = {
+        {0x1.624ba8p-9f, -0x1.5bbdfap+4f}, {-0x1.bb85a4p-11f, -0x1.7c99f2p+4f}, {-0x1.0e6cfcp-8f, -0x1.249f6p+4f},
+        {-0x1.8f8db2p-8f, -0x1.bef388p+2f}, {-0x1.91d366p-8f, 0x1.a27d36p+2f}, {-0x1.148566p-8f, 0x1.1fc422p+4f},
+        {-0x1.fb61acp-11f, 0x1.7b8bccp+4f}, {0x1.539f6p-9f, 0x1.5ed2a2p+4f}, {0x1.5d21ccp-8f, 0x1.a56e6p+3f},
+        {0x1.a19b04p-8f, 0x1.da8eb6p-3f}, {0x1.617e08p-8f, -0x1.98f444p+3f}};
+    const Polygon sliver = make_polygon(local).value().transformed({{10000, 10000}, Rot::from_angle(-24.0f)});
+    const Circle ball{{10000, 10002}, 10};
+    const Manifold m = collide(ball, sliver);
+    ASSERT_TRUE(m.hit);
+    EXPECT_NEAR(m.depth, 8.19557, 1e-3);  // the oracle's, in double: 8.19556891
+    EXPECT_NEAR(m.normal.x, -0.42406, 1e-4);
+    EXPECT_NEAR(m.normal.y, -0.90563, 1e-4);
+    const Manifold r = collide(sliver, ball);
+    ASSERT_TRUE(r.hit);
+    EXPECT_EQ(r.depth, m.depth);
+}
+
 TEST(Regression, ACircleOnAPolygonCollapsedToAPointIsPushedFromThePoint) {
     // Fuzz (collision target): an 11-gon 1e-3 px across, turned and moved in float to
     // (99936, 99936), where floats are 1/128 px apart, collapsed to one point. The nearest-vertex
