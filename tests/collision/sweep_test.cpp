@@ -275,6 +275,24 @@ TEST(SweepSegment, FaceAndEndpoint) {
     EXPECT_TRUE(is_sweep(sweep(Circle{{-5, 0}, 1}, {10, 0}, Segment{{0, 0}, {0, 0}}), 0.4f, {0, 0}, {1, 0}));
 }
 
+TEST(SweepSegment, ACentreOnTheSegmentPushesIntoTheSideItMovesToward) {
+    // The centre on the wall (or within rounding of it) has no side of its own: it touches at
+    // t = 0 on the side it moves toward, the contact point is the wall's point under the
+    // centre (where the circle's surface meets it along the normal, as for any start in
+    // contact), and moving along the wall is no contact.
+    const Segment wall{{0, 0}, {10, 0}};
+    for (const float y : {0.0f, 1e-7f, -1e-7f}) {
+        SCOPED_TRACE(y);
+        const SweepHit up = sweep(Circle{{5, y}, 1}, {0, 2}, wall);
+        EXPECT_TRUE(is_sweep(up, 0.0f, {5, 0}, {0, 1}, 0.0f, 2e-7f));
+        const SweepHit down = sweep(Circle{{5, y}, 1}, {0, -2}, wall);
+        EXPECT_TRUE(is_sweep(down, 0.0f, {5, 0}, {0, -1}, 0.0f, 2e-7f));
+        EXPECT_TRUE(is_miss(sweep(Circle{{5, y}, 1}, {2, 0}, wall)));
+    }
+    // Just off the wall the point is the same: the surface meets the wall under the centre.
+    EXPECT_TRUE(is_sweep(sweep(Circle{{5, 1e-3f}, 1}, {0, -2}, wall), 0.0f, {5, 0}, {0, -1}, 0.0f, 2e-7f));
+}
+
 TEST(SweepShape, RelativeMotion) {
     // r 1 from (0,0) by (5,0); box [8,10]x[-1,1] by (-5,0): relative (10,0), contact when the
     // centre is at x = 7 in the box's frame: t = 0.7. Then the ball is at (3.5,0), the box's
