@@ -294,6 +294,14 @@ TEST(Property, SweepTouchesAtTAndNeverOverlapsBefore) {
                 ctx << "; in contact at t = 0 (gap " << g0 << "), gap slope " << slope;
                 if (f.fail(ctx.str())) return;
             }
+            // The contact point lies on B: where the circle's surface meets it along the normal.
+            if (s.hit && s.t == 0.0f) {
+                const double on_b = std::fabs(test::signed_distance(b, d2(s.point)));
+                if (on_b > tol) {
+                    ctx << "; in contact at t = 0, point off B by " << on_b;
+                    if (f.fail(ctx.str())) return;
+                }
+            }
             if (s.hit) ++hits;
             continue;
         }
