@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "font.h"
+#include "jostle/core/error.h"
 #include "jostle/render/renderer.h"
 
 #include "render/render_test_util.h"
@@ -191,4 +192,89 @@ TEST(RendererOsmesa, TextIsTheFontsPixelsAtEachScale) {
             }
         }
     }
+}
+
+namespace {
+Image solid_sprite(int w, int h, Color c) {
+    Image im{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4)};
+    for (std::size_t i = 0; i < im.rgba.size(); i += 4) {
+        im.rgba[i] = c.r;
+        im.rgba[i + 1] = c.g;
+        im.rgba[i + 2] = c.b;
+        im.rgba[i + 3] = c.a;
+    }
+    return im;
+}
+}  // namespace
+
+TEST(RendererOsmesa, SpritesPastTheAtlasGrowItAndEverySpriteStillDraws) {
+    // The atlas starts at 256 x 256 and doubles when its shelves run out, keeping every sprite
+    // where it is; the backend takes the bigger atlas at the next frame.
+    Renderer r;
+    const SpriteId first = r.add_sprite(quadrant_sprite(8, 8));
+    r.begin_frame(16, 16, kBlack);
+    r.draw_sprite(first, {4, 4});
+    EXPECT_EQ(at(r.end_frame(), 0, 0), kRed);  // the 256 x 256 atlas is on the backend now
+    std::vector<std::pair<SpriteId, Color>> solids;
+    for (int i = 0; i < 40; ++i) {  // 40 of 64 x 64: more than 256 x 256 holds
+        const Color c{static_cast<std::uint8_t>(50 + i * 5), static_cast<std::uint8_t>(200 - i * 3), static_cast<std::uint8_t>(i * 6), 255};
+        solids.emplace_back(r.add_sprite(solid_sprite(64, 64, c)), c);
+    }
+    const SpriteId wide = r.add_sprite(quadrant_sprite(600, 40));  // wider than the atlas so far
+    r.begin_frame(700, 340, kBlack);
+    r.draw_sprite(first, {4, 4});
+    for (std::size_t i = 0; i < solids.size(); ++i) {
+        r.draw_sprite(solids[i].first, {static_cast<float>(32 + 64 * (i % 10)), static_cast<float>(48 + 64 * (i / 10))});
+    }
+    r.draw_sprite(wide, {300, 320});  // covers x 0..599, y 300..339
+    const Image& im = r.end_frame();
+    EXPECT_EQ(at(im, 0, 0), kRed);
+    EXPECT_EQ(at(im, 7, 7), kWhite);
+    for (std::size_t i = 0; i < solids.size(); ++i) {
+        const int x0 = static_cast<int>(64 * (i % 10)), y0 = static_cast<int>(16 + 64 * (i / 10));
+        for (const auto& [dx, dy] : {std::pair{0, 0}, {63, 0}, {0, 63}, {63, 63}, {31, 31}}) {
+            EXPECT_EQ(at(im, x0 + dx, y0 + dy), solids[i].second) << "sprite " << i << " at " << dx << "," << dy;
+        }
+    }
+    EXPECT_EQ(at(im, 0, 300), kRed);
+    EXPECT_EQ(at(im, 599, 300), kGreen);
+    EXPECT_EQ(at(im, 0, 339), kBlue);
+    EXPECT_EQ(at(im, 599, 339), kWhite);
+    EXPECT_EQ(at(im, 650, 320), kBlack);
+    EXPECT_EQ(at(im, 300, 290), kBlack);
+}
+
+TEST(RendererOsmesa, ASpriteOfNoPixelsOrTooLargeOrAFullAtlasIsAnInputError) {
+    Renderer r;
+    const auto message_of = [&](const Image& image) -> std::string {
+        try {
+            r.add_sprite(image);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    EXPECT_EQ(message_of(Image{0, 4, {}}), "sprite of 0x4 pixels: sides must be 1..2048 with 4 bytes per pixel");
+    EXPECT_EQ(message_of(Image{2049, 1, std::vector<std::uint8_t>(2049 * 4)}),
+              "sprite of 2049x1 pixels: sides must be 1..2048 with 4 bytes per pixel");
+    EXPECT_EQ(message_of(Image{2, 2, std::vector<std::uint8_t>(15)}), "sprite of 2x2 pixels: sides must be 1..2048 with 4 bytes per pixel");
+    // The atlas stops at 4096 x 4096: sprites of 2048 x 2048 (the largest) fill it.
+    const SpriteId small = r.add_sprite(quadrant_sprite(8, 8));
+    const Image big = solid_sprite(2048, 2048, kGreen);
+    std::string last;
+    int added = 0;
+    for (; added < 8; ++added) {
+        last = message_of(big);
+        if (last != "no error") break;
+    }
+    EXPECT_GE(added, 1);
+    EXPECT_LT(added, 4);  // four would fill it exactly, and the white block and the first sprite take room
+    EXPECT_EQ(last.rfind("sprite atlas full: ", 0), 0u) << last;
+    EXPECT_NE(last.find("4096x4096 pixels"), std::string::npos) << last;
+    // The renderer still draws what it holds.
+    r.begin_frame(8, 8, kBlack);
+    r.draw_sprite(small, {4, 4});
+    const Image& im = r.end_frame();
+    EXPECT_EQ(at(im, 0, 0), kRed);
+    EXPECT_EQ(at(im, 7, 7), kWhite);
 }
