@@ -315,6 +315,31 @@ TEST_F(Check, AStaleScreenshotGoldenFails) {
     EXPECT_TRUE(fs::exists(path("drive.tick_5.png")));  // only an update removes it
 }
 
+TEST_F(Check, ToleranceAndMaxPixelsLetSmallScreenshotDifferencesPass) {
+    const std::string s = scenario("drive.scn", kDrive);
+    bless(s);
+    // Three pixels of the golden off by 5 in one channel each (a driver's rounding, say).
+    Image golden = read_png(path("drive.tick_29.png"));
+    for (const std::size_t pixel : {0u, 1000u, 2000u}) {
+        std::uint8_t& red = golden.rgba[pixel * 4];
+        red = static_cast<std::uint8_t>(red >= 5 ? red - 5 : red + 5);
+    }
+    write_png_atomic(path("drive.tick_29.png"), golden);
+    const auto status_with = [&](std::vector<std::string> options) {
+        options.insert(options.begin(), s);
+        return check(options).status;
+    };
+    EXPECT_EQ(status_with({}), 1);  // exact by default
+    EXPECT_EQ(status_with({"--tolerance", "5"}), 0);
+    EXPECT_EQ(status_with({"--tolerance", "4"}), 1);
+    EXPECT_EQ(status_with({"--max-pixels", "3"}), 0);
+    EXPECT_EQ(status_with({"--max-pixels", "2"}), 1);
+    EXPECT_EQ(status_with({"--tolerance", "4", "--max-pixels", "3"}), 0);
+    const RunResult pass = check({s, "--tolerance", "5"});
+    EXPECT_EQ(pass.out, pass_line(s, 30, 1) + "\nchecked 1 scenarios: 1 passed, 0 failed\n");
+    EXPECT_EQ(pass.err, "");
+}
+
 // ---- --update --------------------------------------------------------------------------
 
 TEST_F(Check, UpdateCreatesChangesAndRemovesGoldensSayingHow) {

@@ -1,6 +1,7 @@
 // play_test.cpp: `jostle play` end to end, running the built binary on scenario files in a
 // temporary folder: usage and input errors (exit 2, exact messages), failing expectations
 // (exit 1), the summary, frames, traces (the same with and without rendering), APNG and sheet.
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -320,6 +321,58 @@ TEST_F(Play, TheSheetIsTheContactSheetOfTheFrames) {
     std::vector<SheetFrame> frames;
     for (const int tick : {0, 3, 6, 9}) images.push_back(read_png(out + "/frame_00000" + std::to_string(tick) + ".png"));
     for (std::size_t i = 0; i < images.size(); ++i) frames.push_back({static_cast<std::int64_t>(3 * i), &images[i]});
+    const Image expected = contact_sheet(frames);
+    const Image sheet = read_png(path("sheet.png"));
+    EXPECT_EQ(sheet.width, expected.width);
+    EXPECT_EQ(sheet.height, expected.height);
+    EXPECT_TRUE(sheet.rgba == expected.rgba);
+}
+
+TEST_F(Play, NoHudLeavesOutOnlyTheScoreLine) {
+    const std::string s = scenario("s.scn", kDrive);
+    ASSERT_EQ(play({s, "--out", path("hud"), "--frames", "5", "--quiet"}).status, 0);
+    const RunResult r = play({s, "--out", path("plain"), "--frames", "5", "--no-hud", "--quiet"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Image hud = read_png(path("hud/frame_000005.png"));
+    const Image plain = read_png(path("plain/frame_000005.png"));
+    ASSERT_EQ(hud.width, plain.width);
+    ASSERT_EQ(hud.height, plain.height);
+    // The line "SCORE 0   TICK 5" is drawn at (8, 8) at twice the font's size: every pixel
+    // that differs lies in its box, and some do.
+    int differing = 0, outside = 0;
+    for (int y = 0; y < hud.height; ++y) {
+        for (int x = 0; x < hud.width; ++x) {
+            const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(hud.width) + static_cast<std::size_t>(x)) * 4u;
+            if (std::equal(hud.rgba.begin() + static_cast<std::ptrdiff_t>(i), hud.rgba.begin() + static_cast<std::ptrdiff_t>(i) + 4,
+                           plain.rgba.begin() + static_cast<std::ptrdiff_t>(i))) {
+                continue;
+            }
+            ++differing;
+            outside += (x < 8 || x >= 240 || y < 8 || y >= 30) ? 1 : 0;
+        }
+    }
+    EXPECT_GT(differing, 50);
+    EXPECT_EQ(outside, 0);
+}
+
+TEST_F(Play, ASheetOfMoreFramesThanItHoldsSpreadsThemEvenly) {
+    // 100 frames selected, 64 on the sheet (kMaxSheetFrames): ticks i * 99 / 63, first and last kept.
+    const std::string s = scenario("s.scn", kBusy);
+    const std::string out = path("frames");
+    const RunResult r = play({s, "--out", out, "--sheet", path("sheet.png"), "--frames", "0-99", "--size", "32x24", "--quiet"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_EQ(kMaxSheetFrames, 64);
+    std::vector<Image> images;
+    std::vector<std::int64_t> ticks;
+    for (std::int64_t i = 0; i < kMaxSheetFrames; ++i) ticks.push_back(i * 99 / (kMaxSheetFrames - 1));
+    ASSERT_EQ(ticks.back(), 99);
+    for (const std::int64_t tick : ticks) {
+        std::string name = std::to_string(tick);
+        name = "frame_" + std::string(6 - name.size(), '0') + name + ".png";
+        images.push_back(read_png(out + "/" + name));
+    }
+    std::vector<SheetFrame> frames;
+    for (std::size_t i = 0; i < images.size(); ++i) frames.push_back({ticks[i], &images[i]});
     const Image expected = contact_sheet(frames);
     const Image sheet = read_png(path("sheet.png"));
     EXPECT_EQ(sheet.width, expected.width);
