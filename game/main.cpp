@@ -1,6 +1,8 @@
 // main.cpp: the `jostle` command line. Each subcommand is one row of kCommands (name, one-line
 // summary, help text, entry point, whether Ctrl-C stops it cleanly); a new subcommand is a new
 // row. Exit status: 0 ok, 1 a check failed, 2 bad input or usage, 128 + N stopped by signal N.
+#include <cerrno>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <span>
@@ -89,6 +91,20 @@ int usage_error(const std::string& message) {
     return 2;
 }
 
+// A command's status once what it printed has reached standard output: output that could not
+// be written (a full disk, a closed descriptor) is an error, exit status 2, unless the command
+// already failed on bad input (2, said on stderr) or a check failed (1, which stands).
+int checked_stdout(std::string_view name, int status) {
+    const bool failed_before = !std::cout;
+    errno = 0;
+    std::cout.flush();
+    if (std::cout || status == 2) return status;
+    const int e = errno;
+    std::cerr << "jostle " << name << ": standard output: cannot write"
+              << (!failed_before && e != 0 ? ": " + std::string(std::strerror(e)) : std::string()) << '\n';
+    return status == 0 ? 2 : status;
+}
+
 int run(std::span<const std::string_view> args) {
     if (args.empty()) {
         print_usage(std::cerr);
@@ -99,12 +115,12 @@ int run(std::span<const std::string_view> args) {
     if (is_help_flag(name) || name == "help") {
         if (rest.empty()) {
             print_usage(std::cout);
-            return 0;
+            return checked_stdout("help", 0);
         }
         if (rest.size() > 1) return usage_error("help takes at most one command name");
         if (rest.front() == "help") {
             print_usage(std::cout);
-            return 0;
+            return checked_stdout("help", 0);
         }
         const Command* command = find_command(rest.front());
         if (command == nullptr) {
@@ -112,7 +128,7 @@ int run(std::span<const std::string_view> args) {
                                command_names() + ")");
         }
         std::cout << command->help();
-        return 0;
+        return checked_stdout("help", 0);
     }
     const Command* command = find_command(name);
     if (command == nullptr) {
@@ -121,15 +137,15 @@ int run(std::span<const std::string_view> args) {
     }
     if (!rest.empty() && is_help_flag(rest.front())) {
         std::cout << command->help();
-        return 0;
+        return checked_stdout(name, 0);
     }
-    if (!command->stops_cleanly) return command->run(rest);
+    if (!command->stops_cleanly) return checked_stdout(name, command->run(rest));
     const jostle::InterruptHandler handler;
     const int status = command->run(rest);
     // A signal that came while the last files were renamed into place (held back then) still
     // says the run was interrupted, though everything it wrote is complete.
     if (const int sig = jostle::interrupt_signal(); sig != 0) throw jostle::Interrupted(sig);
-    return status;
+    return checked_stdout(name, status);
 }
 
 }  // namespace

@@ -380,6 +380,38 @@ TEST_F(Play, ASheetOfMoreFramesThanItHoldsSpreadsThemEvenly) {
     EXPECT_TRUE(sheet.rgba == expected.rgba);
 }
 
+// Output that cannot reach standard output (a full disk, a closed descriptor) is an error
+// saying so, exit 2, for every command: a summary or a listing is never lost in silence.
+TEST(CommandLine, AStandardOutputThatCannotBeWrittenIsAnErrorExitTwo) {
+    const std::string scenario = kAssets + "/scenarios/demo.scn";
+    const std::string png = std::string(JOSTLE_TEST_DATA) + "/mask_4x4.png";
+    struct Case {
+        std::string command, args;
+    };
+    const Case cases[] = {{"play", "play '" + scenario + "' --assets '" + kAssets + "'"},
+                          {"check", "check '" + scenario + "' --assets '" + kAssets + "'"},
+                          {"imgdiff", "imgdiff '" + png + "' '" + png + "'"},
+                          {"help", "--help"},
+                          {"play", "play --help"}};
+    for (const Case& c : cases) {
+        for (const auto& [redirect, reason] : {std::pair<std::string, std::string>{"> /dev/full", "No space left on device"},
+                                               {">&-", "Bad file descriptor"}}) {
+            SCOPED_TRACE(c.args + " " + redirect);
+            const RunResult r = test::run_program("/bin/sh", {"-c", "exec \"$0\" " + c.args + " " + redirect, JOSTLE_BINARY});
+            EXPECT_EQ(r.status, 2);
+            EXPECT_THAT(r.err, ::testing::StartsWith("jostle " + c.command + ": standard output: cannot write"));
+            EXPECT_THAT(r.err, ::testing::EndsWith("\n"));
+            if (r.err.find(": standard output: cannot write: ") != std::string::npos) {
+                EXPECT_THAT(r.err, ::testing::HasSubstr(reason));
+            }
+        }
+    }
+    // Writable, the same runs exit 0 with nothing on stderr.
+    const RunResult ok = test::run_program("/bin/sh", {"-c", "exec \"$0\" imgdiff '" + png + "' '" + png + "' > /dev/null", JOSTLE_BINARY});
+    EXPECT_EQ(ok.status, 0);
+    EXPECT_EQ(ok.err, "");
+}
+
 // A level wider than the largest frame (8192 px) renders at its own shape, scaled down to
 // 8192 px on its longer side, instead of stopping at the renderer's limit.
 TEST_F(Play, ALevelWiderThanAFrameIsScaledDownToFit) {
