@@ -364,7 +364,16 @@ void sweep_properties(const Circle& a, Vec2 va, const Shape& b, Vec2 vb) {
         const D2 c = d2(a.center) + tau * d2(rel);
         return test::signed_distance(b, c) - a.radius;
     };
-    if (gap_at(0.0) <= tol) return;  // in contact at the start: the moving-away rule decides (property tests)
+    if (gap_at(0.0) <= tol) {
+        // In contact at the start: the moving-away rule decides whether it is a hit (property
+        // tests); a hit's point is where the circle's surface meets B along the normal, on B
+        // (a mask's MTD is whole pixels, not the distance: its point may lie inside).
+        if (s.hit && !std::holds_alternative<PlacedMask>(b) && std::fabs(test::signed_distance(b, d2(s.point))) > tol) {
+            fuzz_fail(what + ": in contact at the start, the point is " + f2s(test::signed_distance(b, d2(s.point))) +
+                      " from B (tolerance " + f2s(tol) + ")");
+        }
+        return;
+    }
     // Never tunnels: no overlap deeper than the tolerance before t (or along the whole path on a miss).
     const double end = s.hit ? static_cast<double>(s.t) : 1.0;
     constexpr int kSamples = 64;

@@ -348,9 +348,9 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Segment& seg) {
     const Vec2 n = normalize_or(Vec2{e.y, -e.x}, Vec2{1.0f, 0.0f});
     if (start.hit) {
         // A centre on the segment up to rounding has no side of its own: it is pushing into the
-        // wall on the side it moves toward. The contact point is the segment's point nearest
-        // the centre, where the circle's surface meets it along the normal (r less the depth,
-        // r, from the centre), as for any other start in contact.
+        // wall on the side it moves toward. Its contact point is the segment's point under the
+        // centre: as for any start in contact, r - depth from the centre along the normal, and
+        // the depth here is r.
         const Vec2 off = detail::offset_from_segment(seg.a, seg.b, moving.center);
         if (seg.a != seg.b && length(off) <= 16.0f * FLT_EPSILON * (length(moving.center - seg.a) + length(e))) {
             const Vec2 into = dot(v, n) >= 0.0f ? n : -n;
