@@ -53,6 +53,7 @@ options:
   --tolerance N     per-channel difference (0..255) that still counts as equal in images
   --max-pixels N    how many pixels may differ in each image (0..9223372036854775807; default 0)
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
+  --                what follows are scenarios and folders, even if they start with '-'
 
 Sharding: with TEST_TOTAL_SHARDS and TEST_SHARD_INDEX (or GTEST_TOTAL_SHARDS and
 GTEST_SHARD_INDEX) set, only scenario i with i % total == index is checked;
@@ -74,8 +75,17 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
     std::int64_t jobs = 1;
     CheckOptions options;
     std::string assets = game::default_assets_dir();
+    bool options_ended = false;  // after "--", a scenario named "-x.scn" is a scenario
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
+        if (options_ended || a.size() < 2 || a.front() != '-') {
+            paths.emplace_back(a);
+            continue;
+        }
+        if (a == "--") {
+            options_ended = true;
+            continue;
+        }
         if (a == "--update") {
             update = true;
             continue;
@@ -109,8 +119,7 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             out << check_help();
             return 0;
         }
-        if (a.size() > 1 && a.front() == '-') return usage(err, "unknown option '" + std::string(a) + "'");
-        paths.emplace_back(a);
+        return usage(err, "unknown option '" + std::string(a) + "'");
     }
     if (paths.empty()) paths.push_back(assets + "/scenarios");
 

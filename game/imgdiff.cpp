@@ -45,6 +45,7 @@ options:
                     pixel in red (written atomically, whatever the outcome)
   --tolerance N     largest channel difference (0..255) that still counts as equal; default 0
   --max-pixels N    how many differing pixels are allowed (0..9223372036854775807); default 0
+  --                what follows are the images, even if they start with '-'
 
 output: one line, "identical", "match" or "differ", with the counts.
 exit status: 0 the images match, 1 they differ, 2 bad usage or an unreadable image.
@@ -55,13 +56,18 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
     std::vector<std::string> files;
     std::optional<std::string> diff_path;
     CompareOptions options;
+    bool options_ended = false;  // after "--", an image named "-a.png" is an image
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
         const auto value = [&]() -> std::optional<std::string_view> {
             if (i + 1 >= args.size()) return std::nullopt;
             return args[++i];
         };
-        if (a == "--out" || a == "--tolerance" || a == "--max-pixels") {
+        if (options_ended || a.size() < 2 || a.front() != '-') {
+            files.emplace_back(a);
+        } else if (a == "--") {
+            options_ended = true;
+        } else if (a == "--out" || a == "--tolerance" || a == "--max-pixels") {
             const auto v = value();
             if (!v) return usage(err, std::string(a) + " needs a value");
             if (a == "--out") {
@@ -81,10 +87,8 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
         } else if (a == "--help" || a == "-h") {  // anywhere an option may stand, as right after the command
             out << imgdiff_help();
             return 0;
-        } else if (a.size() > 1 && a.front() == '-') {
-            return usage(err, "unknown option '" + std::string(a) + "'");
         } else {
-            files.emplace_back(a);
+            return usage(err, "unknown option '" + std::string(a) + "'");
         }
     }
     if (files.size() != 2) return usage(err, "expected two PNG files (EXPECTED and ACTUAL), got " + std::to_string(files.size()));

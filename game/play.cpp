@@ -117,6 +117,7 @@ options:
   --dump-every N    see --trace
   --quiet           no progress line and no summary
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
+  --                what follows is the scenario, even if it starts with '-'
 
 Files are written atomically: an interrupted run never leaves a half-written file.
 Ctrl-C (SIGTERM, SIGHUP) stops between ticks: frames already written are complete, an unfinished
@@ -135,13 +136,20 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
     std::string trace_path;
     bool quiet = false;
     std::string assets = game::default_assets_dir();
+    bool options_ended = false;  // after "--", a scenario named "-x.scn" is a scenario
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
         auto value = [&]() -> std::optional<std::string_view> {
             if (i + 1 >= args.size()) return std::nullopt;
             return args[++i];
         };
-        if (a == "--overlay") {
+        const bool option = !options_ended && a.size() > 1 && a.front() == '-';
+        if (option && a == "--") {
+            options_ended = true;
+        } else if (!option) {
+            if (!scenario_path.empty()) return usage(err, "expected one scenario, got a second: '" + std::string(a) + "'");
+            scenario_path = std::string(a);
+        } else if (a == "--overlay") {
             options.draw.overlay = true;
         } else if (a == "--no-hud") {
             options.draw.hud = false;
@@ -176,12 +184,8 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
         } else if (a == "--help" || a == "-h") {  // anywhere an option may stand, as right after the command
             out << play_help();
             return 0;
-        } else if (a.size() > 1 && a.front() == '-') {
-            return usage(err, "unknown option '" + std::string(a) + "'");
-        } else if (scenario_path.empty()) {
-            scenario_path = std::string(a);
         } else {
-            return usage(err, "expected one scenario, got a second: '" + std::string(a) + "'");
+            return usage(err, "unknown option '" + std::string(a) + "'");
         }
     }
     if (scenario_path.empty()) return usage(err, "expected a scenario file");

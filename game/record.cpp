@@ -96,6 +96,10 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
     std::string assets = game::default_assets_dir();
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
+        if (a == "--") {  // the end of the options: record takes no other arguments
+            if (i + 1 < args.size()) return usage(err, "unexpected argument '" + std::string(args[i + 1]) + "'");
+            continue;
+        }
         if (a != "--level" && a != "-o" && a != "--out" && a != "--script" && a != "--seed" && a != "--tick-rate" &&
             a != "--from" && a != "--at" && a != "--assets") {
             if (a == "--help" || a == "-h") {  // anywhere an option may stand, as right after the command

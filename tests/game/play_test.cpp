@@ -380,6 +380,32 @@ TEST_F(Play, ASheetOfMoreFramesThanItHoldsSpreadsThemEvenly) {
     EXPECT_TRUE(sheet.rgba == expected.rgba);
 }
 
+// "--" ends the options in every command: files named like options come after it.
+TEST_F(Play, DoubleDashEndsTheOptionsForFilesNamedLikeThem) {
+    const std::string s = scenario("-x.scn", kDrive);
+    const std::string cwd = dir_.path().string();
+    const auto run_in_folder = [&](const std::vector<std::string>& args) { return test::run_jostle_binary(args, "/dev/null", cwd); };
+    const RunResult refused = run_in_folder({"play", "-x.scn", "--assets", kAssets});
+    EXPECT_EQ(refused.status, 2);
+    EXPECT_EQ(refused.err, usage_error("unknown option '-x.scn'"));
+    const RunResult played = run_in_folder({"play", "--assets", kAssets, "--", "-x.scn"});
+    EXPECT_EQ(played.status, 0) << played.err;
+    EXPECT_THAT(played.out, ::testing::StartsWith("played -x.scn: 10 ticks, 2/2 expectations passed"));
+    // After "--" even an option's name is a file: here a second scenario.
+    EXPECT_EQ(run_in_folder({"play", "--", "-x.scn", "--quiet"}).err, usage_error("expected one scenario, got a second: '--quiet'"));
+    const RunResult updated = run_in_folder({"check", "--assets", kAssets, "--update", "--", "-x.scn"});
+    EXPECT_EQ(updated.status, 0) << updated.err;
+    EXPECT_TRUE(fs::exists(path("-x.trace")));
+    EXPECT_EQ(run_in_folder({"check", "--assets", kAssets, "--", "-x.scn"}).status, 0);
+    fs::copy_file(std::string(JOSTLE_TEST_DATA) + "/mask_4x4.png", path("-a.png"));
+    const RunResult compared = run_in_folder({"imgdiff", "--", "-a.png", "-a.png"});
+    EXPECT_EQ(compared.status, 0) << compared.err;
+    EXPECT_EQ(compared.out, "identical: 4x4\n");
+    const RunResult recorded = run_in_folder({"record", "--level", "arena", "-o", "r.scn", "--", "-x.scn"});
+    EXPECT_EQ(recorded.status, 2);
+    EXPECT_EQ(recorded.err, "jostle record: unexpected argument '-x.scn'\nRun 'jostle record --help' for usage.\n");
+}
+
 // Output that cannot reach standard output (a full disk, a closed descriptor) is an error
 // saying so, exit 2, for every command: a summary or a listing is never lost in silence.
 TEST(CommandLine, AStandardOutputThatCannotBeWrittenIsAnErrorExitTwo) {
