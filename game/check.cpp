@@ -63,7 +63,8 @@ Ctrl-C (SIGTERM, SIGHUP) stops between ticks; an update then changes no golden, 
 file is left.
 
 exit status: 0 every scenario passed (or was updated), 1 a regression (with --update: an
-expectation failed, which new goldens cannot fix), 2 bad usage or input,
+expectation failed, which new goldens cannot fix), 2 bad usage or input (or standard output
+could not be written: an update's goldens are written all the same),
 130 (143, 129) stopped by Ctrl-C (SIGTERM, SIGHUP).
 )";
 }
@@ -79,6 +80,7 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
         if (options_ended || a.size() < 2 || a.front() != '-') {
+            if (a.empty()) return usage(err, "expected a scenario file or folder, got an empty argument");
             paths.emplace_back(a);
             continue;
         }

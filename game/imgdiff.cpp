@@ -48,7 +48,8 @@ options:
   --                what follows are the images, even if they start with '-'
 
 output: one line, "identical", "match" or "differ", with the counts.
-exit status: 0 the images match, 1 they differ, 2 bad usage or an unreadable image.
+exit status: 0 the images match, 1 they differ, 2 bad usage, an unreadable image or a standard
+output that could not be written.
 )";
 }
 
@@ -64,12 +65,13 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
             return args[++i];
         };
         if (options_ended || a.size() < 2 || a.front() != '-') {
+            if (a.empty()) return usage(err, "expected a PNG file, got an empty argument");
             files.emplace_back(a);
         } else if (a == "--") {
             options_ended = true;
         } else if (a == "--out" || a == "--tolerance" || a == "--max-pixels") {
             const auto v = value();
-            if (!v) return usage(err, std::string(a) + " needs a value");
+            if (!v || v->empty()) return usage(err, std::string(a) + " needs a value");
             if (a == "--out") {
                 diff_path = std::string(*v);
             } else if (a == "--tolerance") {

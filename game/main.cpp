@@ -1,11 +1,13 @@
 // main.cpp: the `jostle` command line. Each subcommand is one row of kCommands (name, one-line
 // summary, help text, entry point, whether Ctrl-C stops it cleanly); a new subcommand is a new
-// row. Exit status: 0 ok, 1 a check failed, 2 bad input or usage, 128 + N stopped by signal N.
+// row. Exit status: 0 ok, 1 a check failed, 2 bad input or usage (or standard output could not be
+// written), 128 + N stopped by signal N.
 #include <cerrno>
 #include <cstring>
 #include <exception>
 #include <iostream>
 #include <span>
+#include <streambuf>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -82,7 +84,8 @@ void print_usage(std::ostream& out) {
     out << "  help      show this text, or a command's help: jostle help <command>\n"
            "\n"
            "Run 'jostle <command> --help' for a command's arguments.\n"
-           "exit status: 0 ok, 1 a check failed, 2 bad input or usage, 128 + N stopped by signal N\n"
+           "exit status: 0 ok, 1 a check failed, 2 bad input or usage (or standard output could not be\n"
+           "written), 128 + N stopped by signal N\n"
            "(130 Ctrl-C; play, record and check then leave only complete files).\n";
 }
 
@@ -91,17 +94,57 @@ int usage_error(const std::string& message) {
     return 2;
 }
 
+// std::cout's buffer, passed through, keeping why a write to it first failed (errno then):
+// stdout on a full disk or closed fails during the run (a large write goes straight to the
+// descriptor), and checked_stdout says why at the end.
+class FailureRecordingBuffer : public std::streambuf {
+public:
+    explicit FailureRecordingBuffer(std::streambuf* to) : to_(to) {}
+    int first_errno() const { return first_errno_; }
+    std::streambuf* to() const { return to_; }
+
+protected:
+    int_type overflow(int_type c) override {
+        if (traits_type::eq_int_type(c, traits_type::eof())) return sync() == 0 ? traits_type::not_eof(c) : traits_type::eof();
+        const bool ok = passed([&] { return !traits_type::eq_int_type(to_->sputc(traits_type::to_char_type(c)), traits_type::eof()); });
+        return ok ? c : traits_type::eof();
+    }
+    std::streamsize xsputn(const char* s, std::streamsize n) override {
+        std::streamsize written = 0;
+        passed([&] { return (written = to_->sputn(s, n)) == n; });
+        return written;
+    }
+    int sync() override { return passed([&] { return to_->pubsync() == 0; }) ? 0 : -1; }
+
+private:
+    // Runs a write; on failure keeps the errno it left (the first failure's), else errno is
+    // left as it was.
+    template <class Write>
+    bool passed(Write&& write) {
+        const int saved = errno;
+        errno = 0;
+        const bool ok = write();
+        if (!ok && first_errno_ == 0) first_errno_ = errno;
+        if (ok || errno == 0) errno = saved;
+        return ok;
+    }
+
+    std::streambuf* to_;
+    int first_errno_ = 0;
+};
+
+FailureRecordingBuffer* g_stdout_failures = nullptr;  // main's, while it runs
+
 // A command's status once what it printed has reached standard output: output that could not
 // be written (a full disk, a closed descriptor) is an error, exit status 2, unless the command
-// already failed on bad input (2, said on stderr) or a check failed (1, which stands).
+// already failed on bad input (2, said on stderr) or a check failed (1, which stands). Files
+// the command wrote are kept: they are complete.
 int checked_stdout(std::string_view name, int status) {
-    const bool failed_before = !std::cout;
-    errno = 0;
     std::cout.flush();
     if (std::cout || status == 2) return status;
-    const int e = errno;
+    const int e = g_stdout_failures != nullptr ? g_stdout_failures->first_errno() : 0;
     std::cerr << "jostle " << name << ": standard output: cannot write"
-              << (!failed_before && e != 0 ? ": " + std::string(std::strerror(e)) : std::string()) << '\n';
+              << (e != 0 ? ": " + std::string(std::strerror(e)) : std::string()) << '\n';
     return status == 0 ? 2 : status;
 }
 
@@ -153,6 +196,18 @@ int run(std::span<const std::string_view> args) {
 int main(int argc, char** argv) {
     std::ios::sync_with_stdio(false);
     const std::vector<std::string_view> args(argv + (argc > 0 ? 1 : 0), argv + argc);
+    FailureRecordingBuffer stdout_failures(std::cout.rdbuf());
+    std::cout.rdbuf(&stdout_failures);
+    g_stdout_failures = &stdout_failures;
+    // std::cout is flushed once more at exit, after main's locals are gone: it gets its own
+    // buffer back first, whichever way main returns.
+    struct Restore {
+        std::streambuf* buffer;
+        ~Restore() {
+            std::cout.rdbuf(buffer);
+            g_stdout_failures = nullptr;
+        }
+    } restore{stdout_failures.to()};
     try {
         return run(args);
     } catch (const jostle::Interrupted& e) {

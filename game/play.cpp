@@ -123,8 +123,9 @@ Files are written atomically: an interrupted run never leaves a half-written fil
 Ctrl-C (SIGTERM, SIGHUP) stops between ticks: frames already written are complete, an unfinished
 animation, sheet or trace is not written.
 
-exit status: 0 the run's expectations passed, 1 one failed, 2 bad usage or bad input,
-130 (143, 129) stopped by Ctrl-C (SIGTERM, SIGHUP).
+exit status: 0 the run's expectations passed, 1 one failed, 2 bad usage or bad input (or
+standard output could not be written: the files written are complete), 130 (143, 129)
+stopped by Ctrl-C (SIGTERM, SIGHUP).
 )";
 }
 
@@ -147,6 +148,7 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
         if (option && a == "--") {
             options_ended = true;
         } else if (!option) {
+            if (a.empty()) return usage(err, "expected a scenario file, got an empty argument");
             if (!scenario_path.empty()) return usage(err, "expected one scenario, got a second: '" + std::string(a) + "'");
             scenario_path = std::string(a);
         } else if (a == "--overlay") {

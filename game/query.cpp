@@ -672,6 +672,7 @@ int run_query(std::istream& in, std::ostream& out) {
 
 int query_command(std::span<const std::string_view> args, std::istream& in, std::ostream& out,
                   std::ostream& err) {
+    if (!args.empty() && args.front() == "--") args = args.subspan(1);  // the end of the options; query takes no files
     if (!args.empty()) {
         err << "jostle query: unexpected argument '" << args.front()
             << "' (queries are read from stdin)\nRun 'jostle query --help' for usage.\n";
@@ -752,8 +753,8 @@ errors:
   bad polygon or mask, an unreadable PNG, and a line longer than 1 MiB are errors.
   Standard input that cannot be read (a folder) ends the run with a message on stderr.
 
-exit status: 0 every line was answered, 2 some line was an error, stdin could not be read
-(or bad usage).
+exit status: 0 every line was answered, 2 some line was an error, stdin could not be read or
+stdout written (or bad usage).
 
 example:
   $ echo '{"op":"collide","a":{"type":"aabb","min":[0,0],"max":[2,2]},"b":{"type":"aabb","min":[1,0],"max":[3,2]}}' | jostle query

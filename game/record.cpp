@@ -84,7 +84,9 @@ options:
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
 
 exit status: 0 written and verified, 1 the read-back replay differed (nothing written),
-2 bad usage or bad input, 130 (143, 129) stopped by Ctrl-C (SIGTERM, SIGHUP): nothing written.
+2 bad usage or bad input (nothing written) or standard output could not be written (the
+scenario is written and verified), 130 (143, 129) stopped by Ctrl-C (SIGTERM, SIGHUP):
+nothing written.
 )";
 }
 

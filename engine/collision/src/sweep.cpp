@@ -350,7 +350,7 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Segment& seg) {
         // A centre on the segment up to rounding has no side of its own: it is pushing into the
         // wall on the side it moves toward. Its contact point is the segment's point under the
         // centre: as for any start in contact, r - depth from the centre along the normal, and
-        // the depth here is r.
+        // the depth here is r up to rounding (so the projection itself is taken).
         const Vec2 off = detail::offset_from_segment(seg.a, seg.b, moving.center);
         if (seg.a != seg.b && length(off) <= 16.0f * FLT_EPSILON * (length(moving.center - seg.a) + length(e))) {
             const Vec2 into = dot(v, n) >= 0.0f ? n : -n;
