@@ -244,14 +244,29 @@ TEST(CastSegment, CollinearAlongTheWall) {
 }
 
 TEST(CastSegment, StartingOnAndZeroLength) {
+    // A wall has no inside: a start on it is on a face and takes the wall's normal, on the
+    // side against the motion (the side it leaves from) when the motion crosses it.
     const CastHit s = cast({0, 0}, {2, 0}, Segment{{0, -1}, {0, 1}});
     EXPECT_TRUE(s.hit);
     EXPECT_EQ(s.t, 0.0f);
     EXPECT_EQ(s.point, (Vec2{0, 0}));
-    // A zero-length bullet on the wall hits at t = 0; off the wall misses.
+    EXPECT_EQ(s.normal, (Vec2{-1, 0}));
+    EXPECT_EQ(cast({0, 0}, {-2, 0}, Segment{{0, -1}, {0, 1}}).normal, (Vec2{1, 0}));
+    // Along the wall from on it (or from its end), either side's normal, never none.
+    for (const Vec2 from : {Vec2{0, 0}, Vec2{0, 1}, Vec2{0, -1}}) {
+        const CastHit along = cast(from, from + Vec2{0, 3}, Segment{{0, -1}, {0, 1}});
+        EXPECT_TRUE(along.hit);
+        EXPECT_EQ(along.t, 0.0f);
+        EXPECT_EQ(along.point, from);
+        EXPECT_EQ(std::fabs(along.normal.x), 1.0f);
+        EXPECT_EQ(along.normal.y, 0.0f);
+    }
+    // A zero-length bullet on the wall hits at t = 0 (with the wall's normal); off the wall misses.
     const CastHit z = cast({0, 0.5f}, {0, 0.5f}, Segment{{0, -1}, {0, 1}});
     EXPECT_TRUE(z.hit);
     EXPECT_EQ(z.t, 0.0f);
+    EXPECT_EQ(std::fabs(z.normal.x), 1.0f);
+    EXPECT_EQ(z.normal.y, 0.0f);
     EXPECT_TRUE(is_miss(cast({1, 0}, {1, 0}, Segment{{0, -1}, {0, 1}})));
     // A zero-length wall (a point) crossed by the bullet.
     const CastHit p = cast({-2, 0}, {2, 0}, Segment{{1, 0}, {1, 0}});

@@ -103,13 +103,15 @@ CastHit cast_wall(Vec2 from, Vec2 to, Vec2 a, Vec2 b) {
     // outward normal faces the bullet.
     if (cross(qp, r) != 0.0f) return {};
     const float rr = dot(r, r);
-    if (rr == 0.0f) return detail::offset_from_segment(a, b, from) == Vec2{} ? starts_inside(from) : CastHit{};
+    // A start on the wall (it has no inside) takes the wall's normal, as a start on any face
+    // does: moving along it or not at all, either side (n, against the motion's side if any).
+    if (rr == 0.0f) return detail::offset_from_segment(a, b, from) == Vec2{} ? starts_inside(from, n) : CastHit{};
     const float ta = dot(qp, r) / rr;
     const float tb = dot(b - from, r) / rr;
     const float lo = ta < tb ? ta : tb;
     const float hi = ta < tb ? tb : ta;
     if (hi < 0.0f || lo > 1.0f) return {};
-    if (lo <= 0.0f) return starts_inside(from);
+    if (lo <= 0.0f) return starts_inside(from, n);
     return hit_at(from, r, lo, normalize_or(-r, Vec2{}));
 }
 
