@@ -67,6 +67,22 @@ protected:
         EXPECT_EQ(r.err, usage_error(message));
     }
 
+    // The sheet at sheet_path is contact_sheet() of the frames of these ticks in out_dir.
+    void expect_contact_sheet_of(const std::string& sheet_path, const std::string& out_dir, const std::vector<std::int64_t>& ticks) {
+        std::vector<Image> images;
+        for (const std::int64_t tick : ticks) {
+            const std::string number = std::to_string(tick);
+            images.push_back(read_png(out_dir + "/frame_" + std::string(6 - number.size(), '0') + number + ".png"));
+        }
+        std::vector<SheetFrame> frames;
+        for (std::size_t i = 0; i < images.size(); ++i) frames.push_back({ticks[i], &images[i]});
+        const Image expected = contact_sheet(frames);
+        const Image sheet = read_png(sheet_path);
+        EXPECT_EQ(sheet.width, expected.width);
+        EXPECT_EQ(sheet.height, expected.height);
+        EXPECT_TRUE(sheet.rgba == expected.rgba);
+    }
+
     const test::TempFolder dir_{"play"};
     std::string level_hash_;
 };
@@ -317,15 +333,7 @@ TEST_F(Play, TheSheetIsTheContactSheetOfTheFrames) {
     const std::string out = path("frames");
     const RunResult r = play({s, "--out", out, "--sheet", path("sheet.png"), "--frames", "0-9", "--every", "3", "--size", "64x48"});
     ASSERT_EQ(r.status, 0) << r.err;
-    std::vector<Image> images;
-    std::vector<SheetFrame> frames;
-    for (const int tick : {0, 3, 6, 9}) images.push_back(read_png(out + "/frame_00000" + std::to_string(tick) + ".png"));
-    for (std::size_t i = 0; i < images.size(); ++i) frames.push_back({static_cast<std::int64_t>(3 * i), &images[i]});
-    const Image expected = contact_sheet(frames);
-    const Image sheet = read_png(path("sheet.png"));
-    EXPECT_EQ(sheet.width, expected.width);
-    EXPECT_EQ(sheet.height, expected.height);
-    EXPECT_TRUE(sheet.rgba == expected.rgba);
+    expect_contact_sheet_of(path("sheet.png"), out, {0, 3, 6, 9});
 }
 
 TEST_F(Play, NoHudLeavesOutOnlyTheScoreLine) {
@@ -362,22 +370,10 @@ TEST_F(Play, ASheetOfMoreFramesThanItHoldsSpreadsThemEvenly) {
     const RunResult r = play({s, "--out", out, "--sheet", path("sheet.png"), "--frames", "0-99", "--size", "32x24", "--quiet"});
     ASSERT_EQ(r.status, 0) << r.err;
     ASSERT_EQ(kMaxSheetFrames, 64);
-    std::vector<Image> images;
     std::vector<std::int64_t> ticks;
     for (std::int64_t i = 0; i < kMaxSheetFrames; ++i) ticks.push_back(i * 99 / (kMaxSheetFrames - 1));
     ASSERT_EQ(ticks.back(), 99);
-    for (const std::int64_t tick : ticks) {
-        std::string name = std::to_string(tick);
-        name = "frame_" + std::string(6 - name.size(), '0') + name + ".png";
-        images.push_back(read_png(out + "/" + name));
-    }
-    std::vector<SheetFrame> frames;
-    for (std::size_t i = 0; i < images.size(); ++i) frames.push_back({ticks[i], &images[i]});
-    const Image expected = contact_sheet(frames);
-    const Image sheet = read_png(path("sheet.png"));
-    EXPECT_EQ(sheet.width, expected.width);
-    EXPECT_EQ(sheet.height, expected.height);
-    EXPECT_TRUE(sheet.rgba == expected.rgba);
+    expect_contact_sheet_of(path("sheet.png"), out, ticks);
 }
 
 // "--" ends the options in every command: files named like options come after it.

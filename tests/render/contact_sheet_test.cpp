@@ -10,17 +10,6 @@ using namespace jostle;
 
 namespace {
 
-Image solid(int w, int h, Color c) {
-    Image im{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h) * 4)};
-    for (std::size_t i = 0; i < im.rgba.size(); i += 4) {
-        im.rgba[i] = c.r;
-        im.rgba[i + 1] = c.g;
-        im.rgba[i + 2] = c.b;
-        im.rgba[i + 3] = c.a;
-    }
-    return im;
-}
-
 // The first letter of a label ('f' of "frame"), pixel by pixel, with its top left at (x0, y0).
 void expect_f_at(const Image& sheet, int x0, int y0, const SheetDesc& desc) {
     const detail::Glyph& f = detail::glyph('f');
@@ -39,7 +28,7 @@ constexpr Color kBlue{0, 0, 255, 255};
 }  // namespace
 
 TEST(ContactSheet, GridOfLabelledThumbnails) {
-    const Image a = solid(40, 30, kRed), b = solid(40, 30, kGreen), c = solid(40, 30, kBlue);
+    const Image a = solid_image(40, 30, kRed), b = solid_image(40, 30, kGreen), c = solid_image(40, 30, kBlue);
     const SheetFrame frames[] = {{0, &a}, {10, &b}, {20, &c}};
     const SheetDesc desc{.columns = 2, .thumb_width = 20};
     const Image sheet = contact_sheet(frames, desc);
@@ -57,7 +46,7 @@ TEST(ContactSheet, GridOfLabelledThumbnails) {
 }
 
 TEST(ContactSheet, FramesOfAnotherShapeAreLetterboxed) {
-    const Image wide = solid(40, 30, kRed), tall = solid(10, 30, kGreen);
+    const Image wide = solid_image(40, 30, kRed), tall = solid_image(10, 30, kGreen);
     const SheetFrame frames[] = {{1, &wide}, {2, &tall}};
     const Image sheet = contact_sheet(frames, {.columns = 2, .thumb_width = 40});
     // The second cell starts at x = 4 + 44; the tall frame is 10 x 30 in its 40 x 30 thumbnail:
@@ -69,7 +58,7 @@ TEST(ContactSheet, FramesOfAnotherShapeAreLetterboxed) {
 }
 
 TEST(ContactSheet, AutomaticColumnsAndEmptyInput) {
-    const Image a = solid(8, 8, kRed);
+    const Image a = solid_image(8, 8, kRed);
     std::vector<SheetFrame> frames(5, SheetFrame{0, &a});
     const Image sheet = contact_sheet(frames);
     EXPECT_EQ(sheet.width, 4 + 3 * (8 + 4));  // ceil(sqrt(5)) = 3 columns
@@ -86,7 +75,7 @@ TEST(ContactSheet, BuiltAFrameAtATimeGivesTheSameBytes) {
     std::vector<Image> images;
     for (std::size_t i = 0; i < sizes.size(); ++i) {
         const auto [w, h] = sizes[i];
-        images.push_back(w > 0 ? solid(w, h, i % 2 ? kRed : kBlue) : Image{});
+        images.push_back(w > 0 ? solid_image(w, h, i % 2 ? kRed : kBlue) : Image{});
         if (w > 0) images.back().rgba[4 * (i % static_cast<std::size_t>(w))] = 77;  // not all one colour
     }
     for (const SheetDesc desc : {SheetDesc{}, SheetDesc{.columns = 3, .thumb_width = 21}, SheetDesc{.columns = 1, .thumb_width = 5}}) {
@@ -98,7 +87,7 @@ TEST(ContactSheet, BuiltAFrameAtATimeGivesTheSameBytes) {
         for (std::size_t i = 0; i < images.size(); ++i) {
             Image copy = images[i];
             builder.add(static_cast<std::int64_t>(100 * i), copy);
-            copy = solid(3, 3, kGreen);  // the builder kept nothing of it
+            copy = solid_image(3, 3, kGreen);  // the builder kept nothing of it
         }
         const Image built = builder.finish();
         EXPECT_EQ(built.width, whole.width);
@@ -110,7 +99,7 @@ TEST(ContactSheet, BuiltAFrameAtATimeGivesTheSameBytes) {
 // A frame that is not a whole image before the first whole one: its label waits for the cell
 // size, which the later frame sets, and lands in the first cell.
 TEST(ContactSheet, ALabelBeforeTheFirstWholeFrameLandsInItsCell) {
-    const Image empty, red = solid(40, 30, kRed);
+    const Image empty, red = solid_image(40, 30, kRed);
     const SheetDesc desc{.columns = 2, .thumb_width = 20};
     ContactSheetBuilder builder(2, desc);
     builder.add(0, empty);

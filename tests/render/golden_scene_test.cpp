@@ -48,14 +48,6 @@ void put(Image& im, int x, int y, Color c) {
     p[3] = c.a;
 }
 
-Image solid_image(int w, int h, Color c) {
-    Image im{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4u)};
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) put(im, x, y, c);
-    }
-    return im;
-}
-
 // The test sprite, 16 x 12: an 'F' whose pixels take their quadrant's colour (red top-left,
 // green top-right, blue bottom-left, yellow bottom-right), a white pixel at texel (0, 0), a
 // cyan patch at alpha 96 in the bottom-right corner, and clear (alpha 0) everywhere else. No

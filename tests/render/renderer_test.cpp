@@ -194,19 +194,6 @@ TEST(RendererOsmesa, TextIsTheFontsPixelsAtEachScale) {
     }
 }
 
-namespace {
-Image solid_sprite(int w, int h, Color c) {
-    Image im{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4)};
-    for (std::size_t i = 0; i < im.rgba.size(); i += 4) {
-        im.rgba[i] = c.r;
-        im.rgba[i + 1] = c.g;
-        im.rgba[i + 2] = c.b;
-        im.rgba[i + 3] = c.a;
-    }
-    return im;
-}
-}  // namespace
-
 TEST(RendererOsmesa, SpritesPastTheAtlasGrowItAndEverySpriteStillDraws) {
     // The atlas starts at 256 x 256 and doubles when its shelves run out, keeping every sprite
     // where it is; the backend takes the bigger atlas at the next frame.
@@ -218,7 +205,7 @@ TEST(RendererOsmesa, SpritesPastTheAtlasGrowItAndEverySpriteStillDraws) {
     std::vector<std::pair<SpriteId, Color>> solids;
     for (int i = 0; i < 40; ++i) {  // 40 of 64 x 64: more than 256 x 256 holds
         const Color c{static_cast<std::uint8_t>(50 + i * 5), static_cast<std::uint8_t>(200 - i * 3), static_cast<std::uint8_t>(i * 6), 255};
-        solids.emplace_back(r.add_sprite(solid_sprite(64, 64, c)), c);
+        solids.emplace_back(r.add_sprite(solid_image(64, 64, c)), c);
     }
     const SpriteId wide = r.add_sprite(quadrant_sprite(600, 40));  // wider than the atlas so far
     r.begin_frame(700, 340, kBlack);
@@ -260,7 +247,7 @@ TEST(RendererOsmesa, ASpriteOfNoPixelsOrTooLargeOrAFullAtlasIsAnInputError) {
     EXPECT_EQ(message_of(Image{2, 2, std::vector<std::uint8_t>(15)}), "sprite of 2x2 pixels: sides must be 1..2048 with 4 bytes per pixel");
     // The atlas stops at 4096 x 4096: sprites of 2048 x 2048 (the largest) fill it.
     const SpriteId small = r.add_sprite(quadrant_sprite(8, 8));
-    const Image big = solid_sprite(2048, 2048, kGreen);
+    const Image big = solid_image(2048, 2048, kGreen);
     std::string last;
     int added = 0;
     for (; added < 8; ++added) {
