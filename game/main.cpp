@@ -136,12 +136,12 @@ private:
 FailureRecordingBuffer* g_stdout_failures = nullptr;  // main's, while it runs
 
 // A command's status once what it printed has reached standard output: output that could not
-// be written (a full disk, a closed descriptor) is an error, exit status 2, unless the command
-// already failed on bad input (2, said on stderr) or a check failed (1, which stands). Files
-// the command wrote are kept: they are complete.
+// be written (a full disk, a closed descriptor) is an error, exit status 2 (a failed check
+// keeps its 1), said even when the command had failed already (query's answers to bad lines
+// go to stdout). Files the command wrote are kept: they are complete.
 int checked_stdout(std::string_view name, int status) {
     std::cout.flush();
-    if (std::cout || status == 2) return status;
+    if (std::cout) return status;
     const int e = g_stdout_failures != nullptr ? g_stdout_failures->first_errno() : 0;
     std::cerr << "jostle " << name << ": standard output: cannot write"
               << (e != 0 ? ": " + std::string(std::strerror(e)) : std::string()) << '\n';

@@ -411,22 +411,25 @@ TEST(CommandLine, AStandardOutputThatCannotBeWrittenIsAnErrorExitTwo) {
     struct Case {
         std::string command;
         std::vector<std::string> args;
+        std::string stdin_path = "/dev/null";
     };
     // Short outputs (a summary, one line) fail when flushed at the end; long ones (help texts,
-    // check's lines, flushed each) during the run.
+    // check's lines, query's answers, flushed each) during the run.
     const Case cases[] = {{"play", {"play", scenario, "--assets", kAssets}},
                           {"check", {"check", scenario, "--assets", kAssets}},
                           {"imgdiff", {"imgdiff", png, png}},
                           {"help", {"--help"}},
                           {"help", {"help", "play"}},
-                          {"play", {"play", "--help"}}};
+                          {"play", {"play", "--help"}},
+                          {"query", {"query"}, std::string(JOSTLE_TEST_DATA) + "/queries_good.jsonl"},
+                          {"query", {"query"}, std::string(JOSTLE_TEST_DATA) + "/queries_mixed.jsonl"}};  // exit 2 anyway
     for (const Case& c : cases) {
         for (const auto& [redirect, reason] : {std::pair<std::string, std::string>{"> /dev/full", "No space left on device"},
                                                {">&-", "Bad file descriptor"}}) {
             std::vector<std::string> args = {"-c", "exec \"$0\" \"$@\" " + redirect, JOSTLE_BINARY};
             args.insert(args.end(), c.args.begin(), c.args.end());
             SCOPED_TRACE(args.back() + " " + redirect);
-            const RunResult r = test::run_program("/bin/sh", args);
+            const RunResult r = test::run_program("/bin/sh", args, c.stdin_path);
             EXPECT_EQ(r.status, 2);
             EXPECT_EQ(r.err, "jostle " + c.command + ": standard output: cannot write: " + reason + "\n");
         }
