@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bits_check.h"
+#include "internal.h"  // engine/collision/src: detail::offset_from_boundary, the lecture's loop
 #include "test_shapes.h"
 
 namespace jostle {
@@ -83,9 +84,15 @@ Manifold scalar_polygon_circle(const Polygon& a, const Circle& b) {
              : len > 0.0f && dist2 < kLeastNormal  ? detail::normalize_rescaled(d, N[face])
                                                    : N[face];
     if (cross(n_prev, u) < 0.0f || cross(u, n_next) < 0.0f) {
-        const Vec2 nearer = dot(u, n_prev) >= dot(u, n_next) ? n_prev : n_next;
-        if (dot(nearer, u) > 0.0f) return hit(b.radius - dot(nearer, d), nearer);  // beside that face
-        u = N[face];  // a far vertex won a rounding tie
+        // A search by features lost to rounding: 09-90's loop over every edge decides.
+        int edge = 0;
+        const Vec2 off = detail::offset_from_boundary(a, c, &edge);
+        const float off2 = off.x * off.x + off.y * off.y;
+        const float off_len = std::sqrt(off2);
+        const Vec2 w = off2 >= kLeastNormal && off_len < kInf ? Vec2{off.x / off_len, off.y / off_len}
+                       : off2 > 0.0f && off2 < kLeastNormal   ? detail::normalize_rescaled(off, N[face])
+                                                              : N[face];
+        return hit(b.radius - off_len, w);
     }
     return hit(b.radius - len, u);
 }

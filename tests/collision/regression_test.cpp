@@ -533,6 +533,37 @@ TEST(Regression, ACircleBesideASliversFaceThatLostTheSearchByRoundingTakesThatFa
     EXPECT_EQ(r.depth, m.depth);
 }
 
+TEST(Regression, ACircleAroundATinyPolygonWhoseNearestVertexLostByRoundingIsPushedFromItsClosestPoint) {
+    // CI's collision fuzz: an octagon 2e-7 px across near the origin, inside a circle of radius
+    // 10 whose centre is 3 px away. The squared distances, about 9, round alike, so the
+    // nearest-vertex search took a vertex whose cone is 26 degrees short of the centre's
+    // direction (its neighbour's holds it); the rule for a face that lost its search by rounding
+    // then gave that vertex's face line: depth 7.291 along a normal 26 degrees off, for the
+    // true 6.990. The closest point of the boundary, over every edge (09-90's loop), decides now.
+    const std::vector<Vec2> points = {{2e-07f, 1.0000001e-07f}, {1.7071068e-07f, 1.7071069e-07f}, {9.999999e-08f, 2e-07f},
+                                      {2.9289325e-08f, 1.7071068e-07f}, {0, 9.9999994e-08f}, {2.9289332e-08f, 2.928931e-08f},
+                                      {1e-07f, 0}, {1.707107e-07f, 2.9289346e-08f}};
+    const Polygon tiny = make_polygon(points).value();
+    const Circle ball{{-2.25f, 2.0f}, 10.0f};
+    const double distance = std::hypot(-2.25, 2.0);  // to the polygon, up to 2e-7
+    const Manifold m = collide(tiny, ball);
+    ASSERT_TRUE(m.hit);
+    EXPECT_NEAR(m.depth, 10.0 - distance, 1e-5);
+    EXPECT_NEAR(m.normal.x, -2.25 / distance, 1e-5);
+    EXPECT_NEAR(m.normal.y, 2.0 / distance, 1e-5);
+    const Manifold sat = collide_sat(tiny, ball);
+    EXPECT_NEAR(m.depth, sat.depth, 1e-5);
+    // The sweep the fuzz found it by: the ball moves away from the polygon (3.0 px to 6.9 px
+    // from it), no contact; with the normal 26 degrees off it was a hit at t = 0, its point 1.3
+    // px off the polygon. Moving toward it, the point is on it.
+    EXPECT_FALSE(sweep(ball, {-4.5f, -3.25f}, tiny).hit);
+    const SweepHit h = sweep(ball, {4.5f, -4.0f}, tiny);
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.t, 0.0f);
+    EXPECT_NEAR(h.point.x, 0.0f, 1e-5f);
+    EXPECT_NEAR(h.point.y, 0.0f, 1e-5f);
+}
+
 TEST(Regression, ACircleOnAPolygonCollapsedToAPointIsPushedFromThePoint) {
     // Fuzz (collision target): an 11-gon 1e-3 px across, turned and moved in float to
     // (99936, 99936), where floats are 1/128 px apart, collapsed to one point. The nearest-vertex

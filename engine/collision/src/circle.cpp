@@ -272,6 +272,34 @@ inline Manifold polygon_circle_hit(const Circle& b, float depth, Float4 normal) 
     return {};
 }
 
+// The contact by 09-90 as the slide writes it, the closest point of the boundary found over
+// every edge, for the centre whose direction from the nearest vertex lies outside that
+// vertex's cone: one of the searches by features lost to rounding, and which feature is the
+// contact is then the question. The faces' normals (turned in float) and the squared distances
+// (rounded at the centre's distance) both decided it, and either can be wrong:
+// - a face lost the largest-separation search (fuzz: an 11-gon sliver 0.013 px thick turned and
+//   moved to 1e4 in float, the centre 0.57 px along the face and 1.8 px from its line);
+// - a vertex won the nearest-vertex search by rounding (fuzz: an octagon 2e-7 px across 3 px
+//   from the centre, where the squared distances, about 9, round alike: the direction was 26
+//   degrees outside the winner's cone, inside its neighbour's);
+// - a vertex on the far side of a sliver won it (a polygon 2e-7 px thick 2 px away).
+// Here the points decide, by their distances: the MTD runs from the closest point to the centre
+// (its normal, for a point inside a face, that face's perpendicular as its points give it).
+// `fallback` is the normal when the centre is on the boundary. Out of line, as the walk above.
+[[gnu::noinline, gnu::cold]] Manifold boundary_contact(const Polygon& a, const Circle& b, Vec2 fallback) {
+    int edge = 0;
+    const Vec2 off = detail::offset_from_boundary(a, b.center, &edge);
+    const float d2 = off.x * off.x + off.y * off.y;
+    const float len = detail::sqrt_nonneg(d2);
+    Vec2 u = fallback;
+    if (d2 >= 0x1p-126f && len < INFINITY) {
+        u = Vec2{off.x / len, off.y / len};
+    } else if (d2 > 0.0f && d2 < 0x1p-126f) {
+        u = detail::normalize_rescaled(off, fallback);
+    }
+    return polygon_circle_hit(b, b.radius - len, lanes_xy(u));
+}
+
 // collide(Polygon, Circle) once the centre is within r of every face's line, given the largest
 // separation max_sep, the first face at it, and the nearest-vertex search (run only if needed).
 template <class Nearest>
@@ -314,18 +342,7 @@ template <class Nearest>
     const Vec2 n{n4[0], n4[1]};
     if (cross(n_prev, n) < 0.0f || cross(n, n_next) < 0.0f) {
         if (const Manifold tied = tied_neighbour_contact(a, b, vertex, dist2, Vec2{face_normal[0], face_normal[1]}); tied.hit) return tied;
-        const Vec2 nearer = dot(n, n_prev) >= dot(n, n_next) ? n_prev : n_next;
-        // The centre is beside that face: on the vertex up to rounding, or along the face,
-        // which lost the largest-separation search to its neighbour by rounding (fuzz: an
-        // 11-gon sliver 0.013 px thick turned and moved to 1e4 in float, the centre 0.57 px
-        // along the face and 1.8 px from its line). The face's line gives the depth, as in
-        // the face case (the vertex lies on it); the vertex's distance understated it.
-        if (dot(nearer, n) > 0.0f) return polygon_circle_hit(b, b.radius - dot(nearer, Vec2{d[0], d[1]}), lanes_xy(nearer));
-        // A vertex on the far side of a sliver can win the nearest-vertex search by rounding
-        // (fuzz: a polygon 2e-7 px thick 2 px from the centre, where squared distances round
-        // to the same float): its faces look away from the centre. The farthest face, the
-        // one the centre is outside of, gives the direction then.
-        n4 = face_normal;
+        return boundary_contact(a, b, Vec2{face_normal[0], face_normal[1]});
     }
     return polygon_circle_hit(b, b.radius - len, n4);
 }
