@@ -325,9 +325,9 @@ template <class Nearest>
     if (!(dist2 <= b.radius * b.radius)) return {};
     const int vertex = nearest.vertex;
     const Float4 d = cc - lanes_xy(a.points()[vertex]);  // lanes 0-1; used only when dist2 is finite
-    // A direction outside the vertex's cone of normals means the centre is on the vertex up
-    // to rounding: the nearer of its two faces' normals. (normalize_or(d, ...) with the one
-    // square root that the depth needs too, and one DIVPS for both components.)
+    // The direction: normalize_or(d, ...) with the one square root that the depth needs too,
+    // and one DIVPS for both components. A direction outside the vertex's cone of normals
+    // means a search lost to rounding: a tied neighbour, or else 09-90's loop, decides.
     const Vec2 n_prev = a.normals()[detail::prev_index(vertex, a.count())];
     const Vec2 n_next = a.normals()[vertex];
     const float len = detail::sqrt_nonneg(dist2);
