@@ -235,6 +235,15 @@ inline Manifold polygon_circle_hit(const Circle& b, float depth, Float4 normal) 
     return Manifold{true, depth > 0.0f ? depth : 0.0f, Vec2{n[0], n[1]}};
 }
 
+// d / |d| as polygon_circle_answer forms the direction from the nearest vertex (its lanes
+// do the same arithmetic), given d2 = |d|^2 and len = sqrt(d2): rescaled when d2 is denormal
+// (the root lost bits), `fallback` when d is zero or its length overflowed.
+Vec2 direction_of(Vec2 d, float d2, float len, Vec2 fallback) {
+    if (d2 >= 0x1p-126f && len < INFINITY) return Vec2{d.x / len, d.y / len};
+    if (d2 > 0.0f && d2 < 0x1p-126f) return detail::normalize_rescaled(d, fallback);
+    return fallback;
+}
+
 // The contact through a neighbour of `vertex`, the nearest vertex, when the direction from
 // `vertex` lies outside its cone: two vertices that float cannot tell apart (across a face
 // shorter than their coordinates' rounding: fuzz, a face 1.8e-41 px long) tie in the search,
@@ -258,13 +267,7 @@ inline Manifold polygon_circle_hit(const Circle& b, float depth, Float4 normal) 
             continue;
         }
         const float len = detail::sqrt_nonneg(d2);
-        // The direction as polygon_circle_answer forms it for the nearest vertex.
-        Vec2 u = fallback;
-        if (d2 >= 0x1p-126f && len < INFINITY) {
-            u = Vec2{d.x / len, d.y / len};
-        } else if (d2 > 0.0f && d2 < 0x1p-126f) {
-            u = detail::normalize_rescaled(d, fallback);
-        }
+        const Vec2 u = direction_of(d, d2, len, fallback);
         const Vec2 n_prev = a.normals()[detail::prev_index(other, count)];
         const Vec2 n_next = a.normals()[other];
         if (cross(n_prev, u) >= 0.0f && cross(u, n_next) >= 0.0f) return polygon_circle_hit(b, b.radius - len, lanes_xy(u));
@@ -291,13 +294,7 @@ inline Manifold polygon_circle_hit(const Circle& b, float depth, Float4 normal) 
     const Vec2 off = detail::offset_from_boundary(a, b.center, &edge);
     const float d2 = off.x * off.x + off.y * off.y;
     const float len = detail::sqrt_nonneg(d2);
-    Vec2 u = fallback;
-    if (d2 >= 0x1p-126f && len < INFINITY) {
-        u = Vec2{off.x / len, off.y / len};
-    } else if (d2 > 0.0f && d2 < 0x1p-126f) {
-        u = detail::normalize_rescaled(off, fallback);
-    }
-    return polygon_circle_hit(b, b.radius - len, lanes_xy(u));
+    return polygon_circle_hit(b, b.radius - len, lanes_xy(direction_of(off, d2, len, fallback)));
 }
 
 // collide(Polygon, Circle) once the centre is within r of every face's line, given the largest
