@@ -4,12 +4,17 @@
 // of all, a later axis winning only when strictly smaller), bit for bit: hit, depth and normal
 // of collide(Obb, Obb) and collide(Aabb, Obb), on seeded random boxes at every angle, at
 // integer positions and sizes (ties between axes and pushes), touching, contained and
-// coincident, and on inputs past the limits (NaN, infinities, -0, overflow).
+// coincident, and on inputs past the limits (NaN, infinities, -0, overflow). The polygon
+// pair's faces in lanes (polygon_polygon, four faces a register, and its AVX2 twin, eight)
+// against the slides' face loop the same way, at the end of the file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <optional>
+#include <vector>
 
 #include "bits_check.h"
 #include "test_shapes.h"
@@ -151,6 +156,138 @@ TEST(SatBits, TiesOverflowAndSignedZeros) {
     for (std::size_t i = 0; i < std::size(cases); ++i) EXPECT_TRUE(same_bits(cases[i], want[i])) << "case " << i;
     EXPECT_TRUE(test::is_miss(cases[3]));  // inf depth
     EXPECT_EQ(std::bit_cast<std::uint32_t>(cases[0].normal.y), 0u);  // +0, not -0
+}
+
+
+// ---------------------------------------------------------------------------------------
+// Polygon pairs (sat.cpp, polygon_polygon and its AVX2 twin polygon_polygon8: faces four or
+// eight to a register, the gap and the largest separation from lane masks) against the
+// slides' loop in its one-sided form (09-62 over the Minkowski difference's faces, as the
+// comment above polygon_polygon derives it): for each face i of A in order, B's separation
+// min_j dot(n_i, b_j - a_i), a gap (> 0, or NaN) ending the test; then B's faces against A;
+// the largest separation, the first face of a tie and A's face on a tie between the two.
+
+// The largest separation of `others` from the faces of `p`, or the first gap.
+struct ScalarFace {
+    float separation = -kInf;
+    int face = 0;
+    bool gap = false;
+};
+ScalarFace scalar_max_face_separation(const Polygon& p, const Polygon& others) {
+    ScalarFace best;
+    for (int i = 0; i < p.count(); ++i) {
+        const Vec2 n = p.normals()[i], v = p.points()[i];
+        float s = kInf;
+        for (int j = 0; j < others.count(); ++j) {
+            const Vec2 o = others.points()[j];
+            const float d = n.x * (o.x - v.x) + n.y * (o.y - v.y);  // x term first, as the lanes
+            s = j == 0 || d < s ? d : s;  // a NaN never replaces the smallest (nor is replaced)
+        }
+        if (!(s <= 0.0f)) return {s, i, true};
+        if (s > best.separation) best = {s, i, false};
+    }
+    return best;
+}
+
+Manifold scalar_polygon_polygon(const Polygon& a, const Polygon& b) {
+    if (a.count() == 0 || b.count() == 0) return {};
+    const ScalarFace fa = scalar_max_face_separation(a, b);
+    if (fa.gap) return {};
+    const ScalarFace fb = scalar_max_face_separation(b, a);
+    if (fb.gap) return {};
+    const bool a_face = fa.separation >= fb.separation;
+    const float depth = -(a_face ? fa.separation : fb.separation);
+    if (!(depth < kInf)) return {};
+    const Vec2 n = a_face ? a.normals()[fa.face] : -b.normals()[fb.face];
+    return hit(depth, n);
+}
+
+// A convex polygon of 3..16 vertices (both paths' group sizes and the spare slots past them)
+// around `at`, radius up to `size`; on the integer grid when `integers` (ties between faces,
+// edges lying on each other).
+std::optional<Polygon> random_polygon_up_to_16(test::BitsDraw& g, Vec2 at, float size, bool integers) {
+    const int n = 3 + g.below(14);
+    const float step = 2.0f * kPi / static_cast<float>(n);
+    const float base = g.uniform(0.0f, 2.0f * kPi);
+    const float ry = g.uniform(0.3f, 1.0f);
+    std::vector<Vec2> pts;
+    for (int i = 0; i < n; ++i) {
+        const float angle = base + step * (static_cast<float>(i) + g.uniform(-0.3f, 0.3f));
+        Vec2 v{at.x + size * std::cos(angle), at.y + size * ry * std::sin(angle)};
+        if (integers) v = {std::round(v.x), std::round(v.y)};
+        pts.push_back(v);
+    }
+    if (g.below(2) == 0) std::reverse(pts.begin(), pts.end());
+    return make_polygon(pts);  // nullopt for points the rounding made collinear or repeated
+}
+
+// Every pair both ways, with the AVX2 paths on (where the CPU has them) and off.
+::testing::AssertionResult polygon_pair_matches(const Polygon& a, const Polygon& b) {
+    const Manifold want_ab = scalar_polygon_polygon(a, b), want_ba = scalar_polygon_polygon(b, a);
+    for (const bool avx2 : {true, false}) {
+        detail::use_avx2_paths(avx2);
+        const Manifold got_ab = collide(a, b), got_ba = collide(b, a);
+        detail::use_avx2_paths(true);
+        if (auto r = same_bits(got_ab, want_ab); !r) return r << " (A, B; AVX2 paths " << (avx2 ? "on)" : "off)");
+        if (auto r = same_bits(got_ba, want_ba); !r) return r << " (B, A; AVX2 paths " << (avx2 ? "on)" : "off)");
+    }
+    return ::testing::AssertionSuccess();
+}
+
+TEST(SatBits, PolygonPolygonMatchesTheScalarFaceLoop) {
+    test::BitsDraw g(0x9a1eu, 1000);
+    int hits = 0, pairs = 0;
+    for (int k = 0; k < 200000; ++k) {
+        const bool integers = k % 3 == 0;
+        const float size = integers ? static_cast<float>(2 + g.below(12)) : g.uniform(0.01f, 50.0f);
+        const Vec2 at = k % 5 == 0 ? Vec2{g.uniform(-1e5f, 1e5f), g.uniform(-1e5f, 1e5f)} : Vec2{};
+        const auto a = random_polygon_up_to_16(g, at, size, integers);
+        const Vec2 near{at.x + g.uniform(-2.0f, 2.0f) * size, at.y + g.uniform(-2.0f, 2.0f) * size};
+        // One pair in 8 the same polygon twice (every face tied with its twin), one in 8 a
+        // smaller one inside (containment), else a second polygon nearby.
+        const int kind = g.below(8);
+        const auto b = kind == 0   ? a
+                       : kind == 1 ? random_polygon_up_to_16(g, at, 0.25f * size, integers)
+                                   : random_polygon_up_to_16(g, integers ? Vec2{std::round(near.x), std::round(near.y)} : near,
+                                                             size * g.uniform(0.2f, 1.5f), integers);
+        if (!a || !b) continue;
+        SCOPED_TRACE(testing::Message() << "case " << k);
+        ASSERT_TRUE(polygon_pair_matches(*a, *b));
+        hits += collide(*a, *b).hit;
+        ++pairs;
+    }
+    // The draws must reach what they are for: thousands of pairs, hits and misses.
+    EXPECT_GT(pairs, 150000);
+    EXPECT_GT(hits, 15000);
+    EXPECT_LT(hits, pairs - 10000);
+}
+
+// Past the limits: polygons scaled and moved until separations overflow to +-inf or NaN,
+// and an empty Polygon, which every query answers with a miss.
+TEST(SatBits, PolygonPolygonMatchesTheScalarFaceLoopPastTheLimits) {
+    test::BitsDraw g(0x51c4u, 1000);
+    const float scales[] = {1.0f, 1e6f, 1e17f, 1e18f};
+    const float shifts[] = {0.0f, 1e30f, 1.7e38f, 2e38f, -2e38f};
+    int compared = 0;
+    for (int k = 0; k < 6000; ++k) {
+        const float scale = scales[g.below(4)];
+        const auto far = [&](Vec2 at) -> std::optional<Polygon> {
+            const auto p = random_polygon_up_to_16(g, at * scale, 5.0f * scale, false);
+            if (!p) return std::nullopt;
+            return p->moved({shifts[g.below(5)], shifts[g.below(5)]});
+        };
+        const auto a = far({}), b = far({g.uniform(-5.0f, 5.0f), g.uniform(-5.0f, 5.0f)});
+        if (!a || !b) continue;
+        SCOPED_TRACE(testing::Message() << "case " << k);
+        ASSERT_TRUE(polygon_pair_matches(*a, *b));
+        ++compared;
+    }
+    EXPECT_GT(compared, 5000);
+    const Polygon empty;
+    const auto tri = make_polygon(std::vector<Vec2>{{0.0f, 0.0f}, {4.0f, 0.0f}, {0.0f, 3.0f}});
+    ASSERT_TRUE(tri.has_value());
+    EXPECT_TRUE(polygon_pair_matches(empty, *tri));
+    EXPECT_TRUE(polygon_pair_matches(empty, empty));
 }
 
 }  // namespace
