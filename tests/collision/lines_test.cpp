@@ -65,6 +65,32 @@ TEST(LineIntersect, DegenerateLineIsParallelToEverything) {
     EXPECT_EQ(intersect(deg, deg).point, (Vec2{0, 0}));
 }
 
+// The decisions are exact for any float coefficients: det and the same-line test are zero
+// only when they are zero in exact arithmetic (double holds the products exactly). Each case
+// failed when they were taken in float.
+TEST(LineIntersect, ExactForTinyAndNearlyParallelCoefficients) {
+    // Lines through points 1e-23 apart (y = x and y = 1): det = 1e-46 underflowed in float,
+    // and both lines were called coincident.
+    const LineIntersection tiny = intersect(line_through({0, 0}, {1e-23f, 1e-23f}), line_through({0, 1}, {1e-23f, 1}));
+    EXPECT_EQ(tiny.kind, LineRelation::point);
+    EXPECT_EQ(tiny.point, (Vec2{1, 1}));
+    // e = 2^-13: A2 B1 = (1 + e)(1 - e) = 1 - 2^-26 rounds to 1 in float, so det = -2^-26
+    // rounded to 0 (parallel, or coincident when both pass through the origin).
+    const float e = std::ldexp(1.0f, -13);
+    const Line l1{1.0f, 1.0f - e, 0.0f};
+    const LineIntersection through_origin = intersect(l1, Line{1.0f + e, 1.0f, 0.0f});
+    EXPECT_EQ(through_origin.kind, LineRelation::point);
+    EXPECT_EQ(through_origin.point, (Vec2{0, 0}));
+    // C2 = 2^-26: they cross at (-(1 - e), 1) (on l1: -(1 - e) + (1 - e) = 0; on l2:
+    // -(1 + e)(1 - e) + 1 = e^2).
+    const LineIntersection nearly = intersect(l1, Line{1.0f + e, 1.0f, e * e});
+    EXPECT_EQ(nearly.kind, LineRelation::point);
+    EXPECT_EQ(nearly.point, (Vec2{-(1.0f - e), 1.0f}));
+    // A crossing beyond float's range is reported as parallel (no point to give).
+    EXPECT_EQ(intersect(Line{1.0f, 1.0f, 3e38f}, Line{1.0f + std::ldexp(1.0f, -23), 1.0f, -3e38f}).kind,
+              LineRelation::parallel);
+}
+
 TEST(SegmentIntersect, Crossing) {
     const SegmentIntersection r = intersect(Segment{{0, 0}, {4, 4}}, Segment{{0, 4}, {4, 0}});
     EXPECT_TRUE(r.hit);
@@ -141,6 +167,20 @@ TEST(SegmentIntersect, ZeroLengthSegments) {
     EXPECT_FALSE(intersect(Segment{{5, 0}, {5, 0}}, Segment{{0, 0}, {4, 0}}).hit);
     EXPECT_TRUE(intersect(Segment{{1, 1}, {1, 1}}, Segment{{1, 1}, {1, 1}}).hit);
     EXPECT_FALSE(intersect(Segment{{1, 1}, {1, 1}}, Segment{{1, 2}, {1, 2}}).hit);
+}
+
+// Short segments are not points: segments 1e-23 long cross (their cross product, 2e-46,
+// underflowed in float, and s1 was taken for a point off s2).
+TEST(SegmentIntersect, ShortSegmentsCrossAndOverlap) {
+    const float d = 1e-23f;
+    const SegmentIntersection x = intersect(Segment{{0, 0}, {d, d}}, Segment{{0, d}, {d, 0}});
+    EXPECT_TRUE(x.hit);
+    EXPECT_EQ(x.point, (Vec2{0.5f * d, 0.5f * d}));
+    EXPECT_FALSE(intersect(Segment{{0, 0}, {d, d}}, Segment{{2 * d, 0}, {2 * d, d}}).hit);
+    // Collinear and overlapping from the middle of s1.
+    const SegmentIntersection c = intersect(Segment{{0, 0}, {2 * d, 0}}, Segment{{d, 0}, {3 * d, 0}});
+    EXPECT_TRUE(c.hit);
+    EXPECT_EQ(c.point, (Vec2{d, 0}));
 }
 
 TEST(ClosestPointLine, FootOfThePerpendicular) {

@@ -354,6 +354,8 @@ TEST(QueryLines, PointParallelCoincident) {
     EXPECT_EQ(answer(R"({"op":"lines","a":[[0,0],[2,2]],"b":[[0,2],[2,0]]})"), R"({"kind":"point","point":[1,1]})");
     EXPECT_EQ(answer(R"({"op":"lines","a":[[0,0],[1,0]],"b":[[0,1],[1,1]]})"), R"({"kind":"parallel","point":null})");
     EXPECT_EQ(answer(R"({"op":"lines","a":[[0,0],[1,0]],"b":[[2,0],[3,0]]})"), R"({"kind":"coincident","point":null})");
+    // Points 1e-23 apart still make lines that cross (y = x and y = 1).
+    EXPECT_EQ(answer(R"({"op":"lines","a":[[0,0],[1e-23,1e-23]],"b":[[0,1],[1e-23,1]]})"), R"({"kind":"point","point":[1,1]})");
 }
 
 TEST(QueryErrors, AMaskOfNoPixelsIsAnError) {

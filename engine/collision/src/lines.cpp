@@ -18,16 +18,22 @@ Line line_through(Vec2 p1, Vec2 p2) {
 }
 
 LineIntersection intersect(const Line& l1, const Line& l2) {
-    // 09-74/75: det = A2 B1 - B2 A1; zero means the lines never cross once.
-    const float det = l2.a * l1.b - l2.b * l1.a;
-    if (det == 0.0f || !std::isfinite(det)) {
-        const bool degenerate = (l1.a == 0.0f && l1.b == 0.0f) || (l2.a == 0.0f && l2.b == 0.0f);
+    // 09-74/75: det = A2 B1 - B2 A1; zero means the lines never cross once. In double: the
+    // product of two floats is exact there and each difference is rounded once, so det (and
+    // the same-line test) is zero exactly when it is zero in exact arithmetic. In float, lines
+    // whose coefficients are tiny (through points 1e-23 apart) lost det to underflow and were
+    // called coincident, and nearly parallel ones could round to parallel.
+    const double a1 = l1.a, b1 = l1.b, c1 = l1.c, a2 = l2.a, b2 = l2.b, c2 = l2.c;
+    const double det = a2 * b1 - b2 * a1;
+    if (det == 0.0 || !std::isfinite(det)) {
+        const bool degenerate = (a1 == 0.0 && b1 == 0.0) || (a2 == 0.0 && b2 == 0.0);
         // Same line when (A, B, C) of one is a multiple of the other's.
-        const bool same = !degenerate && std::isfinite(det) && l1.a * l2.c - l2.a * l1.c == 0.0f &&
-                          l1.b * l2.c - l2.b * l1.c == 0.0f;
+        const bool same = !degenerate && std::isfinite(det) && a1 * c2 - a2 * c1 == 0.0 && b1 * c2 - b2 * c1 == 0.0;
         return {same ? LineRelation::coincident : LineRelation::parallel, {}};
     }
-    const Vec2 p{(l2.c * l1.b - l2.b * l1.c) / det, (l1.c * l2.a - l1.a * l2.c) / det};
+    // A crossing beyond float's range (lines a rounding away from parallel) has no point to
+    // report: parallel, as the header says.
+    const Vec2 p{static_cast<float>((c2 * b1 - b2 * c1) / det), static_cast<float>((c1 * a2 - a1 * c2) / det)};
     if (!finite(p)) return {LineRelation::parallel, {}};
     return {LineRelation::point, p};
 }
@@ -36,38 +42,41 @@ SegmentIntersection intersect(const Segment& s1, const Segment& s2) {
     // 09-78 finds the lines' crossing, then checks its x and y against both segments' ranges.
     // The same test is done here on the crossing's parameters along each segment, computed
     // from cross products: equal in exact arithmetic, but an endpoint that touches the other
-    // segment gives a parameter of exactly 0 or 1 instead of a rounded coordinate.
+    // segment gives a parameter of exactly 0 or 1 instead of a rounded coordinate. The cross
+    // and dot products are taken in double (exact products, one rounding per sum), so no
+    // underflow turns short segments into points or parallel ones (see intersect(Line, Line)).
     if (!valid(s1) || !valid(s2)) return {};
     const Vec2 r = s1.b - s1.a;
     const Vec2 s = s2.b - s2.a;
     const Vec2 qp = s2.a - s1.a;
-    const float denom = cross(r, s);
-    if (denom != 0.0f) {
-        const float t = cross(qp, s) / denom;
-        const float u = cross(qp, r) / denom;
-        if (!(t >= 0.0f && t <= 1.0f && u >= 0.0f && u <= 1.0f)) return {};
-        return {true, s1.a + t * r};
+    const auto cross_d = [](Vec2 u, Vec2 v) { return double{u.x} * v.y - double{u.y} * v.x; };
+    const auto dot_d = [](Vec2 u, Vec2 v) { return double{u.x} * v.x + double{u.y} * v.y; };
+    const double denom = cross_d(r, s);
+    if (denom != 0.0) {
+        const double t = cross_d(qp, s) / denom;
+        const double u = cross_d(qp, r) / denom;
+        if (!(t >= 0.0 && t <= 1.0 && u >= 0.0 && u <= 1.0)) return {};
+        return {true, s1.a + static_cast<float>(t) * r};
     }
     // Parallel (09-75's det = 0), or one of them is a point.
-    const float rr = dot(r, r);
-    const float ss = dot(s, s);
-    if (rr == 0.0f) {  // s1 is a point
+    if (r == Vec2{}) {  // s1 is a point
         const Vec2 p = closest_point(s2, s1.a);
         return p == s1.a ? SegmentIntersection{true, s1.a} : SegmentIntersection{};
     }
-    if (ss == 0.0f) {  // s2 is a point
+    if (s == Vec2{}) {  // s2 is a point
         const Vec2 p = closest_point(s1, s2.a);
         return p == s2.a ? SegmentIntersection{true, s2.a} : SegmentIntersection{};
     }
-    if (cross(qp, r) != 0.0f) return {};  // parallel, not on one line
+    if (cross_d(qp, r) != 0.0) return {};  // parallel, not on one line
     // Collinear: overlap of the parameter ranges along s1.
-    const float t0 = dot(qp, r) / rr;
-    const float t1 = dot(s2.b - s1.a, r) / rr;
-    const float lo = t0 < t1 ? t0 : t1;
-    const float hi = t0 < t1 ? t1 : t0;
-    if (hi < 0.0f || lo > 1.0f) return {};
-    if (lo <= 0.0f) return {true, s1.a};
-    return {true, s1.a + lo * r};
+    const double rr = dot_d(r, r);
+    const double t0 = dot_d(qp, r) / rr;
+    const double t1 = dot_d(s2.b - s1.a, r) / rr;
+    const double lo = t0 < t1 ? t0 : t1;
+    const double hi = t0 < t1 ? t1 : t0;
+    if (hi < 0.0 || lo > 1.0) return {};
+    if (lo <= 0.0) return {true, s1.a};
+    return {true, s1.a + static_cast<float>(lo) * r};
 }
 
 Vec2 closest_point(const Line& line, Vec2 p) {

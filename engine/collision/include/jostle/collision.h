@@ -396,8 +396,11 @@ struct LineIntersection {
     Vec2 point;  // the crossing point when kind == point; {0, 0} otherwise
 };
 // 09-75: x = (C2 B1 - B2 C1) / det, y = (C1 A2 - A1 C2) / det, det = A2 B1 - B2 A1;
-// det == 0 means parallel, or coincident when the lines are the same. A line through two
-// equal points is degenerate: it is "parallel" to everything.
+// det == 0 means parallel, or coincident when the lines are the same, decided exactly for
+// the given coefficients (the products are taken in double, where they are exact), however
+// small or nearly parallel. Lines that cross beyond float's range (a rounding away from
+// parallel) are reported as parallel. A line through two equal points is degenerate: it is
+// "parallel" to everything.
 LineIntersection intersect(const Line& l1, const Line& l2);
 
 struct SegmentIntersection {
@@ -405,7 +408,9 @@ struct SegmentIntersection {
     Vec2 point;  // a shared point: the crossing, or for collinear overlapping segments the
                  // shared point nearest to s1.a
 };
-// 09-78: the lines' crossing, then a range check on both segments (closed: endpoints count).
+// 09-78: the lines' crossing, then a range check on both segments (closed: endpoints count),
+// on the crossing's parameters from cross products taken in double (no underflow makes a
+// short segment a point).
 SegmentIntersection intersect(const Segment& s1, const Segment& s2);
 
 Vec2 closest_point(const Line& line, Vec2 p);       // 09-83: foot of the perpendicular
