@@ -331,6 +331,38 @@ TEST(ClosestPointOnBoundary, InsidePointGoesToTheNearestEdge) {
     EXPECT_VEC_NEAR(closest_point_on_boundary(sq, {2, 0.5f}), (Vec2{2, 0}), 1e-6f);
 }
 
+// The closest points that answer a bare Vec2 give {0, 0} for a NaN or infinite input, as
+// the ClosestPoint answers give point {0, 0} (at distance +inf): before, a NaN query point
+// gave a plausible finite point (a segment's end, the circle's +x point) and the empty
+// Polygon a boundary point on an edge it does not have.
+TEST(ClosestPointVec2, NonFiniteInputOrNoBoundaryAnswersTheOrigin) {
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    const Vec2 origin{0, 0};
+    const Segment seg{{5, 5}, {6, 5}};
+    EXPECT_EQ(closest_point(seg, Vec2{nan, 1}), origin);
+    EXPECT_EQ(closest_point(seg, Vec2{1, -inf}), origin);
+    EXPECT_EQ(closest_point(Segment{{5, 5}, {inf, 5}}, Vec2{1, 1}), origin);
+    EXPECT_EQ(closest_point_on(Circle{{5, 5}, 2}, Vec2{nan, nan}), origin);
+    EXPECT_EQ(closest_point_on(Circle{{5, nan}, 2}, Vec2{1, 1}), origin);
+    EXPECT_EQ(closest_point_on(Circle{{5, 5}, -1}, Vec2{1, 1}), origin);
+    const Line x_axis = line_through({0, 0}, {1, 0});
+    EXPECT_EQ(closest_point(x_axis, Vec2{inf, 3}), origin);
+    EXPECT_EQ(closest_point(Line{nan, 1, 0}, Vec2{2, 3}), origin);
+    int edge = 7;
+    EXPECT_EQ(closest_point_on_boundary(Polygon{}, Vec2{7, 1}, &edge), origin);
+    EXPECT_EQ(edge, -1);
+    const Polygon square = test::box_polygon(0, 0, 1, 1);
+    edge = 7;
+    EXPECT_EQ(closest_point_on_boundary(square, Vec2{nan, 0}, &edge), origin);
+    EXPECT_EQ(edge, -1);
+    // Finite input is answered as before.
+    EXPECT_EQ(closest_point(seg, Vec2{5.5f, 9}), (Vec2{5.5f, 5}));
+    EXPECT_EQ(closest_point(x_axis, Vec2{2, 3}), (Vec2{2, 0}));
+    EXPECT_EQ(closest_point_on(Circle{{5, 5}, 2}, Vec2{5, 5}), (Vec2{7, 5}));
+    EXPECT_EQ(closest_point_on_boundary(square, Vec2{3, 0}, &edge), (Vec2{1, 0}));
+    EXPECT_GE(edge, 0);
+}
+
 TEST(ClosestPointShape, DispatchesToTheShape) {
     EXPECT_EQ(closest_point(Shape{Aabb{{0, 0}, {4, 2}}}, {6, -1}).point, (Vec2{4, 0}));
     EXPECT_VEC_NEAR(closest_point(Shape{Circle{{0, 0}, 5}}, {6, 8}).point, (Vec2{3, 4}), 1e-5f);

@@ -79,9 +79,16 @@ SegmentIntersection intersect(const Segment& s1, const Segment& s2) {
     return {true, s1.a + static_cast<float>(lo) * r};
 }
 
+namespace {
+// The "no answer" of the closest points that answer a bare Vec2: {0, 0}, the point the
+// ClosestPoint answers give with distance +inf, for a non-finite input or shape.
+bool finite_line(const Line& l) { return std::isfinite(l.a) && std::isfinite(l.b) && std::isfinite(l.c); }
+}  // namespace
+
 Vec2 closest_point(const Line& line, Vec2 p) {
     // 09-83: the perpendicular through p is -B x + A y = C2 with C2 = -B px + A py; the
     // closest point is where it crosses the line. A degenerate line (A = B = 0) gives p.
+    if (!finite_line(line) || !finite(p)) return {};
     const Line perp{-line.b, line.a, -line.b * p.x + line.a * p.y};
     const LineIntersection x = intersect(line, perp);
     return x.kind == LineRelation::point ? x.point : p;
@@ -90,6 +97,7 @@ Vec2 closest_point(const Line& line, Vec2 p) {
 Vec2 closest_point(const Segment& seg, Vec2 p) {
     // 09-85: the closest point on the line if it lies in the segment, else the nearer
     // endpoint; as a clamped parameter along the segment, which is the same thing.
+    if (!valid(seg) || !finite(p)) return {};
     const float t = detail::segment_param(seg.a, seg.b, p);
     return t == 1.0f ? seg.b : seg.a + t * (seg.b - seg.a);
 }
@@ -97,6 +105,7 @@ Vec2 closest_point(const Segment& seg, Vec2 p) {
 Vec2 closest_point_on(const Circle& c, Vec2 q) {
     // 09-98: d = c - q, p = q + (|d| - r)/|d| d. q at the centre: every point is as near;
     // the defined answer is the one in direction +x.
+    if (!valid(c) || !finite(q)) return {};
     const Vec2 d = c.center - q;
     const float len = length(d);
     if (!(len > 0.0f)) return c.center + Vec2{c.radius, 0.0f};
@@ -147,11 +156,19 @@ bool contains(const Polygon& poly, Vec2 q) {
 }
 
 Vec2 closest_point_on_boundary(const Polygon& poly, Vec2 q, int* edge) {
-    // 09-90: the nearest of the closest points on every edge.
-    int nearest = 0;
-    const Vec2 offset = detail::offset_from_boundary(poly, q, &nearest);
+    // 09-90: the nearest of the closest points on every edge. No boundary (the empty
+    // Polygon), a non-finite q or an answer past float's range: {0, 0} on edge -1.
+    int nearest = -1;
+    Vec2 point{};
+    if (valid(poly) && finite(q)) {
+        point = q - detail::offset_from_boundary(poly, q, &nearest);
+        if (!finite(point)) {
+            point = {};
+            nearest = -1;
+        }
+    }
     if (edge) *edge = nearest;
-    return q - offset;
+    return point;
 }
 
 ClosestPoint closest_point(const Polygon& poly, Vec2 q) {

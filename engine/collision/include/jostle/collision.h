@@ -102,7 +102,9 @@
 //   (zero length, zero radius, coincident centres, parallel edges) has a defined result:
 //   coincident circle centres use normal {1, 0}. Any NaN or infinite coordinate in a shape
 //   makes it hit nothing (a miss, all zeros), never undefined behaviour; closest_point then
-//   answers point {0, 0} at distance +infinity. So does a malformed shape (Aabb min > max,
+//   answers point {0, 0} at distance +infinity (the closest points that answer a bare Vec2,
+//   on a line, a segment, a circle or a polygon's boundary: {0, 0}, on edge -1), and so it
+//   does for a NaN or infinite query point. So does a malformed shape (Aabb min > max,
 //   negative half extents or radius, a radius whose square overflows (above about 1.8e19),
 //   a box or segment whose size overflows, the empty Polygon),
 //   and a cast or motion whose end or squared length (or a sweep whose contact point)
@@ -422,7 +424,8 @@ ClosestPoint closest_point(const Polygon& poly, Vec2 q);
 ClosestPoint closest_point(const Circle& c, Vec2 q);   // in the closed disc
 ClosestPoint closest_point(const PlacedMask& m, Vec2 q);  // nearest point of a set pixel's square
 ClosestPoint closest_point(const Shape& s, Vec2 q);
-// The point of the polygon's boundary nearest q, and the edge it lies on.
+// The point of the polygon's boundary nearest q, and the edge it lies on (-1 when there is
+// none: the empty Polygon or a non-finite q, whose point is {0, 0}).
 Vec2 closest_point_on_boundary(const Polygon& poly, Vec2 q, int* edge = nullptr);
 bool contains(const Polygon& poly, Vec2 q);  // closed
 
