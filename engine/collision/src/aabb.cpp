@@ -42,9 +42,9 @@ std::optional<Aabb> intersection(const Aabb& a, const Aabb& b) {
 
 Manifold collide(const Aabb& a, const Aabb& b) {
     // 09-34 says the MTD is the smaller dimension of the intersection. That holds only when
-    // neither box contains the other along the axis; in general the push that separates A
-    // along +x is a.max.x - b.min.x and along -x is b.max.x - a.min.x (A inside B needs the
-    // whole way out). Take the smallest of the four pushes.
+    // neither box contains the other along the axis; in general A leaves B toward -x by
+    // a.max.x - b.min.x (normal +x) and toward +x by b.max.x - a.min.x (normal -x), and the
+    // same along y (A inside B needs the whole way out). Take the smallest of the four pushes.
     if (!overlaps(a, b)) return {};
     const float push_left = a.max.x - b.min.x;   // B is to the right: normal +x
     const float push_right = b.max.x - a.min.x;  // B is to the left: normal -x

@@ -91,6 +91,8 @@ CastHit cast_wall(Vec2 from, Vec2 to, Vec2 a, Vec2 b) {
     Vec2 n = normalize_or(Vec2{s.y, -s.x}, Vec2{});
     const float side = dot(n, from - a);
     if (side < 0.0f || (side == 0.0f && dot(n, r) > 0.0f)) n = -n;  // against the motion if on it
+    // from + t r = a + u s by Cramer's rule, as intersect(Segment, Segment) (09-75's det up to
+    // its sign).
     const float denom = cross(r, s);
     if (denom != 0.0f) {
         const float t = cross(qp, s) / denom;

@@ -302,7 +302,9 @@ inline Vec2 offset_from_boundary(const Polygon& poly, Vec2 p, int* edge) {
 // v first comes within `radius` of a centre": used by circle-circle sweeps (radius r1 + r2)
 // and by casts against circles and rounded corners. `offset` is the centre minus the
 // point's start. On a hit, t in [0, 1] and `outward` is the unit vector from the centre to
-// the point at contact. Only called with the point outside the circle at t = 0.
+// the point at contact. Only called with the point outside the circle at t = 0. A path that
+// only grazes the circle (F = R) is a hit here, at G = 0: sweeps then drop it by their
+// moving-into rule, casts keep it (a bullet that touches a circle hits it).
 struct CircleContact {
     bool hit = false;
     float t = 0.0f;
@@ -317,15 +319,14 @@ CastHit cast_circle(Vec2 from, Vec2 to, Vec2 center, float radius);
 // corners far from the origin are not floats, but relative to its centre they are precise.
 Polygon centred_polygon(const Obb& box);  // the OBB's polygon with its centre at the origin
 
-// A convex point set for SAT: its vertices (each plus `offset`) and the candidate
-// separating axes it brings (unit edge normals; a segment also brings its direction, since
-// it has no area).
+// A convex point set for the general SAT (only segment-segment uses it now): its vertices
+// and the candidate separating axes it brings (unit edge normals; a segment also brings its
+// direction, since it has no area).
 struct ConvexView {
     const Vec2* points = nullptr;
     int count = 0;
     const Vec2* axes = nullptr;
     int axis_count = 0;
-    Vec2 offset;
 };
 
 // SAT over the axes of both views (09-62): early exit on a separating axis, MTD along the

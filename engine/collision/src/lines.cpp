@@ -51,6 +51,9 @@ SegmentIntersection intersect(const Segment& s1, const Segment& s2) {
     const Vec2 qp = s2.a - s1.a;
     const auto cross_d = [](Vec2 u, Vec2 v) { return double{u.x} * v.y - double{u.y} * v.x; };
     const auto dot_d = [](Vec2 u, Vec2 v) { return double{u.x} * v.x + double{u.y} * v.y; };
+    // s1.a + t r = s2.a + u s, solved by Cramer's rule: t = cross(qp, s) / cross(r, s),
+    // u = cross(qp, r) / cross(r, s). cross(r, s) is 09-75's det with A = r.y, B = -r.x (09-77),
+    // up to its sign.
     const double denom = cross_d(r, s);
     if (denom != 0.0) {
         const double t = cross_d(qp, s) / denom;

@@ -1349,7 +1349,10 @@ std::optional<ConvexRegion> raw_region_of(const Obb& box) {
     return r;
 }
 
-// Either winding is accepted; fewer than 3 or more than 16 points, or no area, is a miss.
+// A Polygon is convex and wound one way by construction; its half-planes are rebuilt here in
+// double from the points (the winding read from the area, whichever way it is), so that a
+// pixel is decided by the exact edge line. Non-finite points (a polygon moved past float's
+// range) are a miss, as is anything without area (kept as a guard: no valid Polygon has none).
 std::optional<ConvexRegion> raw_region_of(const Polygon& poly) {
     if (poly.count() < 3 || poly.count() > kMaxPolygonVertices) return std::nullopt;
     const auto n = static_cast<std::size_t>(poly.count());

@@ -17,10 +17,9 @@ namespace detail {
 // Points are taken relative to `origin` (a vertex of one shape), so that shapes far from the
 // world origin are projected with the precision of their size, not of their position.
 static void project(const ConvexView& v, Vec2 axis, Vec2 origin, float& lo, float& hi) {
-    // (p + offset) first: far from the origin it is the exact difference of nearby floats.
-    lo = hi = dot((v.points[0] + v.offset) - origin, axis);
+    lo = hi = dot(v.points[0] - origin, axis);
     for (int i = 1; i < v.count; ++i) {
-        const float d = dot((v.points[i] + v.offset) - origin, axis);
+        const float d = dot(v.points[i] - origin, axis);
         lo = d < lo ? d : lo;
         hi = d > hi ? d : hi;
     }
@@ -29,7 +28,7 @@ static void project(const ConvexView& v, Vec2 axis, Vec2 origin, float& lo, floa
 Manifold sat_collide(const ConvexView& a, const ConvexView& b) {
     float best = INFINITY;
     Vec2 best_normal{1.0f, 0.0f};
-    const Vec2 origin = a.points[0] + a.offset;
+    const Vec2 origin = a.points[0];
     auto test_axes = [&](const ConvexView& owner) {
         for (int i = 0; i < owner.axis_count; ++i) {
             const Vec2 u = owner.axes[i];
@@ -43,7 +42,7 @@ Manifold sat_collide(const ConvexView& a, const ConvexView& b) {
     if (!test_axes(a) || !test_axes(b)) return {};
     if (best == INFINITY) {
         // Neither shape brought an axis: two points. They meet only where they are equal.
-        if (a.points[0] + a.offset == b.points[0] + b.offset) return hit_with(0.0f, {1.0f, 0.0f});
+        if (a.points[0] == b.points[0]) return hit_with(0.0f, {1.0f, 0.0f});
         return {};
     }
     return hit_with(best, best_normal);
@@ -67,8 +66,8 @@ SegmentAxes segment_axes(const Segment& s) {
 }  // namespace detail
 
 namespace {
-detail::ConvexView view_of(const detail::SegmentAxes& s, Vec2 offset = {}) {
-    return {s.points, 2, s.axes, s.axis_count, offset};
+detail::ConvexView view_of(const detail::SegmentAxes& s) {
+    return {s.points, 2, s.axes, s.axis_count};
 }
 
 // 09-58 with the boxes' own axes: 2 + 2 candidate axes. A box's projection on an axis u is
@@ -597,8 +596,9 @@ namespace {
 // difference of a polygon and a segment has the polygon's faces and the two sides of the
 // segment's line as its faces (a segment of zero length adds none: a point), so those are all
 // the axes SAT needs: the segment's own direction, which the generic SAT (sat_collide) also
-// tries, is never a smaller push than the least of them. Ties go to A's face, then the
-// segment's side through b.a (normal n, as segment_axes takes it), then the side through b.b.
+// tries, is never a smaller push than the least of them. Each side's separation is measured
+// from one end (n from b.a, -n from b.b; either end lies on both sides' line). Ties go to A's
+// face, then side n (the MTD's normal is then -n: from A toward B), then side -n.
 Manifold polygon_segment(Convex a, const Segment& b) {
     const Vec2 ends[2] = {b.a, b.b};
     const FaceSeparation fa = max_face_separation(a.points, a.normals, a.count, ends, 2);

@@ -319,8 +319,8 @@ SweepHit sweep(const Circle& moving, Vec2 v, const Polygon& poly) {
 }
 
 SweepHit sweep(const Circle& moving, Vec2 v, const Aabb& box) {
-    // The start is judged by the same box clamp as collide(Circle, Aabb), so both agree on
-    // ties; the motion by the box's polygon (its corners are exact).
+    // The start is judged by the same box clamp as collide(Aabb, Circle) (called here), so
+    // both agree on ties; the motion by the box's polygon (its corners are exact).
     if (!valid(moving) || !valid(box) || !detail::valid_motion(moving.center, v)) return {};
     const Manifold start = collide(box, moving);
     if (start.hit) return contact_at_start(moving, v, start);

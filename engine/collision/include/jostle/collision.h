@@ -46,7 +46,11 @@
 //             touching or overlapping at t = 0 report t = 0 only when A moves into B; moving
 //             off B, sliding along it or a path that only grazes it is no hit (the lecture's
 //             moving-away early out, 09-114): a ball left touching a wall by the MTD push can
-//             leave it, and a ball rolls over a mask's pixel seams.
+//             leave it, and a ball rolls over a mask's pixel seams. A start in overlap is
+//             judged along collide()'s MTD normal: a circle deep inside moving along its MTD
+//             face is no hit (the narrowphase resolves overlaps), and at an exact tie of faces
+//             the shape's own face order decides (a box and the same box as a Polygon list
+//             their faces differently).
 //
 // PAIR TABLE: how collide(A, B) is computed (the reverse order swaps and flips the normal;
 // for two shapes of the same kind whose pushes tie, the first tied axis of A wins, so the
@@ -97,8 +101,11 @@
 //
 // TOLERANCES
 //   Touching is decided on the computed values with no epsilon: shapes that touch exactly
-//   in float arithmetic (integer coordinates, axis-aligned edges) report hit with depth 0;
-//   shapes that touch only up to rounding may report a tiny depth or a miss. Degenerate input
+//   in float arithmetic (integer coordinates with axis-aligned edges) report hit with depth 0;
+//   shapes that touch only up to rounding may report a tiny depth or a miss. Integer
+//   coordinates alone are not enough: SAT's unit axes are rounded for any edge that is not
+//   axis-aligned, so a segment touching another at an integer point may be a miss for
+//   collide() and a hit for intersect() or cast(), which decide on cross products. Degenerate input
 //   (zero length, zero radius, coincident centres, parallel edges) has a defined result:
 //   coincident circle centres use normal {1, 0}. Any NaN or infinite coordinate in a shape
 //   makes it hit nothing (a miss, all zeros), never undefined behaviour; closest_point then
@@ -461,7 +468,8 @@ struct SweptCapsule {
     std::array<Vec2, 4> rectangle;  // c + d, c + v + d, c + v - d, c - d; all equal c when v = 0
 };
 SweptCapsule swept_capsule(const Circle& c, Vec2 v);
-// Does the circle touch `fixed` anywhere along its path? (overlap test, no time)
+// Does the circle touch `fixed` anywhere along its path? (overlap test, no time; a path
+// that only grazes, F = R, counts here, as it does for casts: only sweep() leaves it out)
 bool swept_overlaps(const Circle& moving, Vec2 v, const Circle& fixed);
 
 // A moving circle against a static box, polygon or segment: the earliest of the centre
