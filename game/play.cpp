@@ -119,7 +119,9 @@ options:
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
   --                what follows is the scenario, even if it starts with '-'
 
-Files are written atomically: an interrupted run never leaves a half-written file.
+Files are written atomically: an interrupted run never leaves a half-written file. An output
+named /dev/stdout (/dev/fd/1) goes to standard output itself, before the summary (with --quiet,
+alone), and after >> it is appended; --anim needs a file it can patch, not a pipe or >>.
 Ctrl-C (SIGTERM, SIGHUP) stops between ticks: frames already written are complete, an unfinished
 animation, sheet or trace is not written.
 
