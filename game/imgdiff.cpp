@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "arena.h"
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/render/image_compare.h"
@@ -43,7 +44,8 @@ most --max-pixels pixels differ. Images of different sizes never match.
 options:
   --out DIFF.png    write a diff picture: EXPECTED faded toward white with every differing
                     pixel in red (written atomically, whatever the outcome); to /dev/stdout
-                    the picture alone, the line below then on stderr
+                    the picture alone, the line below then on stderr; not a level or sprite of
+                    the assets ($JOSTLE_ASSETS, else the source tree's), nor a new .png there
   --tolerance N     largest channel difference (0..255) that still counts as equal; default 0
   --max-pixels N    how many differing pixels are allowed (0..9223372036854775807); default 0
   --                what follows are the images, even if they start with '-'
@@ -97,6 +99,17 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
     if (files.size() != 2) return usage(err, "expected two PNG files (EXPECTED and ACTUAL), got " + std::to_string(files.size()));
     if (diff_path && same_file(*diff_path, files[0])) return usage(err, "--out: '" + *diff_path + "' is EXPECTED, being compared; give another path");
     if (diff_path && same_file(*diff_path, files[1])) return usage(err, "--out: '" + *diff_path + "' is ACTUAL, being compared; give another path");
+
+    if (diff_path) {
+        // A diff picture over a level or sprite of the assets, or new among the sprites, would
+        // change the game ($JOSTLE_ASSETS, else the source tree's; without assets, nothing to keep).
+        std::string asset;
+        try {
+            asset = game::ArenaGame(game::default_assets_dir()).asset_named(*diff_path);
+        } catch (const InputError&) {
+        }
+        if (!asset.empty()) return usage(err, "--out: '" + *diff_path + "' " + asset + "; give another path");
+    }
 
     try {
         const Image expected = read_png(files[0]);

@@ -101,7 +101,8 @@ from the file, so every run is the same run. Without an output option it only si
 fast as it can. At the end it prints a summary: ticks, expectations passed, time, speed.
 
 options:
-  --out DIR         write frames as DIR/frame_NNNNNN.png (the tick number, zero-padded)
+  --out DIR         write frames as DIR/frame_NNNNNN.png (the tick number, zero-padded); not
+                    the assets' levels or sprites folder (the frames would be sprites)
   --frames LIST     which ticks become frames: all (default), 120, 10-20, 300- (to the end),
                     or a comma-separated list of those
   --every N         keep every Nth frame of each range (default 1)
@@ -206,6 +207,10 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
 
     try {
         const game::ArenaGame game(assets);
+        // Frames in the sprites folder would be new sprites (and change every level-hash).
+        if (const std::string folder = options.out_dir.empty() ? "" : game.asset_folder(options.out_dir); !folder.empty()) {
+            return usage(err, "--out: '" + options.out_dir + "' " + folder + "; give another folder");
+        }
         for (const auto& [flag, path] : {std::pair{"--trace", &trace_path}, std::pair{"--sheet", &options.sheet_path},
                                          std::pair{"--anim", &options.anim_path}}) {
             if (const std::string asset = game.asset_named(*path); !asset.empty()) {

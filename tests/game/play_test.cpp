@@ -440,6 +440,33 @@ TEST(CommandLine, AStandardOutputThatCannotBeWrittenIsAnErrorExitTwo) {
     EXPECT_EQ(ok.err, "");
 }
 
+// An --out folder that is the assets' sprites folder would make every frame a sprite (and
+// change every scenario's level-hash); the levels folder is the game's too. Either is refused
+// before the run, by any spelling, and nothing is written there.
+TEST_F(Play, AnOutFolderThatIsTheAssetsSpritesOrLevelsFolderIsRefused) {
+    const fs::path assets = path("assets");
+    fs::create_directories(assets);
+    fs::copy(fs::path(kAssets) / "levels", assets / "levels");
+    fs::copy(fs::path(kAssets) / "sprites", assets / "sprites");
+    const std::vector<std::string> sprites = test::file_names(assets / "sprites"), levels = test::file_names(assets / "levels");
+    const std::string s = scenario("s.scn", kDrive);
+    const std::pair<std::string, std::string> cases[] = {{(assets / "sprites").string(), "sprites"},
+                                                         {(assets / "levels").string() + "/", "levels"},
+                                                         {(assets / "levels" / ".." / "sprites").string(), "sprites"}};
+    for (const auto& [out, what] : cases) {
+        const RunResult r = run_jostle({"play", s, "--assets", assets.string(), "--out", out, "--frames", "3", "--quiet"});
+        EXPECT_EQ(r.status, 2) << out;
+        EXPECT_EQ(r.err, usage_error("--out: '" + out + "' is the " + what + " folder of the assets; give another folder"));
+    }
+    EXPECT_EQ(test::file_names(assets / "sprites"), sprites);
+    EXPECT_EQ(test::file_names(assets / "levels"), levels);
+    // A folder below them is not read by the game: frames may go there.
+    const RunResult below = run_jostle({"play", s, "--assets", assets.string(), "--out", (assets / "sprites" / "frames").string(),
+                                        "--frames", "3", "--size", "32x24", "--quiet"});
+    EXPECT_EQ(below.status, 0) << below.err;
+    EXPECT_TRUE(fs::exists(assets / "sprites" / "frames" / "frame_000003.png"));
+}
+
 // An output named /dev/stdout goes through the program's descriptor 1 (README: it "stays the
 // descriptor it stands for"), after and before what the program prints there, whatever stdout
 // is: a file (`>`), a file appended to (`>>`) or a pipe. Opened again by name, it started at
