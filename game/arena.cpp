@@ -572,6 +572,14 @@ std::string ArenaGame::asset_named(const std::string& path) const {
     return "";
 }
 
+std::string ArenaGame::asset_folder(const std::string& dir) const {
+    std::error_code ec;
+    for (const char* sub : {"levels", "sprites"}) {
+        if (std::filesystem::equivalent(dir, assets_dir_ + "/" + sub, ec)) return "is the " + std::string(sub) + " folder of the assets";
+    }
+    return "";
+}
+
 std::string ArenaGame::level_hash(const std::string& level) const {
     // The level and every sprite: masks change the game, pictures change the screenshots.
     Hasher h;

@@ -57,6 +57,10 @@ public:
     // 'x' of the assets" (NAME.level in the levels folder; NAME.png in the sprites folder), or ""
     // when none. Commands refuse an output that names one, before they run.
     std::string asset_named(const std::string& path) const;
+    // What folder `dir` is among those the game reads: "is the sprites folder of the assets"
+    // (by any path or link), the same for levels, or "". An output folder there (frames, a
+    // report's images) would add sprites or mix files into the levels: commands refuse it.
+    std::string asset_folder(const std::string& dir) const;
 
 private:
     std::string assets_dir_;

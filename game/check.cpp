@@ -48,7 +48,8 @@ options:
                     changed. All new files are written first and renamed together, so an
                     interrupted update changes nothing. Missing goldens are created only so.
   --report DIR      write DIR/report.html (each failing scenario with its expected, actual
-                    and diff images side by side) and DIR/junit.xml (every scenario)
+                    and diff images side by side) and DIR/junit.xml (every scenario); not
+                    the assets' levels or sprites folder (the images would be sprites)
   --jobs N          check N scenarios at once, 1 to 256 (default 1)
   --tolerance N     per-channel difference (0..255) that still counts as equal in images
   --max-pixels N    how many pixels may differ in each image (0..9223372036854775807; default 0)
@@ -127,6 +128,10 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
 
     try {
         const game::ArenaGame game(assets);
+        // The report's images in the sprites folder would be new sprites.
+        if (const std::string folder = report.empty() ? "" : game.asset_folder(report); !folder.empty()) {
+            return usage(err, "--report: '" + report + "' " + folder + "; give another folder");
+        }
         const std::vector<std::string> scenarios = select_shard(collect_scenarios(paths));
         if (!report.empty()) create_report_folder(report);  // a bad --report is said before the run
         std::vector<ScenarioCheck> checks(scenarios.size());

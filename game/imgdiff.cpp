@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "arena.h"
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/render/image_compare.h"
@@ -42,7 +43,9 @@ most --max-pixels pixels differ. Images of different sizes never match.
 
 options:
   --out DIFF.png    write a diff picture: EXPECTED faded toward white with every differing
-                    pixel in red (written atomically, whatever the outcome)
+                    pixel in red (written atomically, whatever the outcome); to /dev/stdout
+                    the picture alone, the line below then on stderr; not a level or sprite of
+                    the assets ($JOSTLE_ASSETS, else the source tree's), nor a new .png there
   --tolerance N     largest channel difference (0..255) that still counts as equal; default 0
   --max-pixels N    how many differing pixels are allowed (0..9223372036854775807); default 0
   --                what follows are the images, even if they start with '-'
@@ -97,21 +100,34 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
     if (diff_path && same_file(*diff_path, files[0])) return usage(err, "--out: '" + *diff_path + "' is EXPECTED, being compared; give another path");
     if (diff_path && same_file(*diff_path, files[1])) return usage(err, "--out: '" + *diff_path + "' is ACTUAL, being compared; give another path");
 
+    if (diff_path) {
+        // A diff picture over a level or sprite of the assets, or new among the sprites, would
+        // change the game ($JOSTLE_ASSETS, else the source tree's; without assets, nothing to keep).
+        std::string asset;
+        try {
+            asset = game::ArenaGame(game::default_assets_dir()).asset_named(*diff_path);
+        } catch (const InputError&) {
+        }
+        if (!asset.empty()) return usage(err, "--out: '" + *diff_path + "' " + asset + "; give another path");
+    }
+
     try {
         const Image expected = read_png(files[0]);
         const Image actual = read_png(files[1]);
         const CompareResult r = compare_images(expected, actual, options);
         if (diff_path) write_png_atomic(*diff_path, diff_image(expected, actual, options.max_channel_delta));
+        // A diff picture on standard output keeps it to itself: the verdict goes to stderr.
+        std::ostream& verdict = diff_path && same_file(*diff_path, "/dev/stdout") ? err : out;
         const auto size = [](const Image& im) { return std::to_string(im.width) + "x" + std::to_string(im.height); };
         if (r.identical) {
-            out << "identical: " << size(expected) << '\n';
+            verdict << "identical: " << size(expected) << '\n';
         } else if (!r.same_size) {
-            out << "differ: sizes " << size(expected) << " and " << size(actual) << '\n';
+            verdict << "differ: sizes " << size(expected) << " and " << size(actual) << '\n';
         } else {
-            out << (r.within_tolerance ? "match: " : "differ: ") << r.differing_pixels << " of "
-                << std::int64_t{expected.width} * expected.height << " pixels differ by more than "
-                << options.max_channel_delta << " (allowed " << options.max_differing_pixels
-                << "); largest channel difference " << r.max_channel_delta << '\n';
+            verdict << (r.within_tolerance ? "match: " : "differ: ") << r.differing_pixels << " of "
+                    << std::int64_t{expected.width} * expected.height << " pixels differ by more than "
+                    << options.max_channel_delta << " (allowed " << options.max_differing_pixels
+                    << "); largest channel difference " << r.max_channel_delta << '\n';
         }
         return r.within_tolerance ? 0 : 1;
     } catch (const InputError& e) {

@@ -101,7 +101,8 @@ from the file, so every run is the same run. Without an output option it only si
 fast as it can. At the end it prints a summary: ticks, expectations passed, time, speed.
 
 options:
-  --out DIR         write frames as DIR/frame_NNNNNN.png (the tick number, zero-padded)
+  --out DIR         write frames as DIR/frame_NNNNNN.png (the tick number, zero-padded); not
+                    the assets' levels or sprites folder (the frames would be sprites)
   --frames LIST     which ticks become frames: all (default), 120, 10-20, 300- (to the end),
                     or a comma-separated list of those
   --every N         keep every Nth frame of each range (default 1)
@@ -119,7 +120,9 @@ options:
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
   --                what follows is the scenario, even if it starts with '-'
 
-Files are written atomically: an interrupted run never leaves a half-written file.
+Files are written atomically: an interrupted run never leaves a half-written file. An output
+named /dev/stdout (/dev/fd/1) goes to standard output itself, before the summary (with --quiet,
+alone), and after >> it is appended; --anim needs a file it can patch, not a pipe or >>.
 Ctrl-C (SIGTERM, SIGHUP) stops between ticks: frames already written are complete, an unfinished
 animation, sheet or trace is not written.
 
@@ -204,6 +207,10 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
 
     try {
         const game::ArenaGame game(assets);
+        // Frames in the sprites folder would be new sprites (and change every level-hash).
+        if (const std::string folder = options.out_dir.empty() ? "" : game.asset_folder(options.out_dir); !folder.empty()) {
+            return usage(err, "--out: '" + options.out_dir + "' " + folder + "; give another folder");
+        }
         for (const auto& [flag, path] : {std::pair{"--trace", &trace_path}, std::pair{"--sheet", &options.sheet_path},
                                          std::pair{"--anim", &options.anim_path}}) {
             if (const std::string asset = game.asset_named(*path); !asset.empty()) {

@@ -74,7 +74,10 @@ Actions: left, right, up, down, fire.
 
 options:
   --level LEVEL     the level to play (a file assets/levels/LEVEL.level)
-  -o, --out FILE    the scenario to write (atomically; an existing file is replaced)
+  -o, --out FILE    the scenario to write (atomically; an existing file is replaced);
+                    /dev/stdout: standard output, which then holds the scenario alone (the
+                    summary goes to stderr); it cannot be read back, so the bytes are
+                    replayed before they are sent
   --script FILE     the input script (default: standard input)
   --seed N          the world's RNG seed (default 1)
   --tick-rate N     ticks per second, 1..1000 (default 60)
@@ -229,8 +232,14 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
             err << "jostle record: note: " << where << ":" << line << ": expectation fails in this run at tick "
                 << r.expectation->tick << ": expected " << r.expectation->text << ", found " << r.actual << "\n";
         }
-        out << "recorded " << recording.hashes.size() << " ticks of level " << recording.scenario.level << " to " << out_path
-            << " (read back and replayed: the same state on every tick)\n";
+        // A scenario on standard output keeps it to itself (a line after `at N end` would make
+        // the file unreadable): the summary goes to stderr. A target written in place was not
+        // read back, and the summary says so.
+        std::ostream& summary = same_file(out_path, "/dev/stdout") ? err : out;
+        summary << "recorded " << recording.hashes.size() << " ticks of level " << recording.scenario.level << " to " << out_path
+                << (file.in_place() ? " (not read back, as it is not a regular file: the bytes sent were replayed first, the "
+                                      "same state on every tick)\n"
+                                    : " (read back and replayed: the same state on every tick)\n");
         return 0;
     } catch (const InputError& e) {
         err << "jostle record: " << e.what() << '\n';

@@ -5,7 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -127,6 +129,59 @@ TEST_F(AtomicFileTest, APipeIsWrittenInPlaceNotReplaced) {
     }
     drain.get();
     EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+// A path that stands for a descriptor of this process (/dev/stdout is /dev/fd/1) goes through
+// that descriptor, at its offset and with its O_APPEND, in order with the other writes to it:
+// opened again, it started at offset 0 of the file behind it and overwrote what was there
+// (stdout redirected to a file lost the trace's start to the summary, and `>>` its old lines).
+TEST_F(AtomicFileTest, ADescriptorOfThisProcessIsWrittenThroughNotOpenedAgain) {
+    const int fd = ::open(path("out.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::write(fd, "before;", 7), 7);
+    for (const std::string& name : {"/dev/fd/" + std::to_string(fd), "/proc/self/fd/" + std::to_string(fd)}) {
+        AtomicFile file(name);
+        EXPECT_TRUE(file.in_place());
+        file.write(name + ";");
+        file.commit();
+    }
+    ASSERT_EQ(::write(fd, "after", 5), 5);
+    EXPECT_EQ(read_text(path("out.txt")), "before;/dev/fd/" + std::to_string(fd) + ";/proc/self/fd/" + std::to_string(fd) + ";after");
+    // A header patched at the end leaves the descriptor after the last byte, not after the patch.
+    {
+        AtomicFile file("/dev/fd/" + std::to_string(fd));
+        const std::int64_t start = file.tell();
+        file.write("n=?;data");
+        file.seek(start + 2);
+        file.write("2");
+        file.commit();
+    }
+    ASSERT_EQ(::write(fd, ";end", 4), 4);
+    EXPECT_THAT(read_text(path("out.txt")), ::testing::EndsWith("aftern=2;data;end"));
+    ::close(fd);
+    EXPECT_EQ(files(), std::vector<std::string>{"out.txt"});
+
+    // Opened to append (`>>`): the old bytes stay; a file that must be patched says why it cannot.
+    const int append = ::open(path("log.txt").c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
+    ASSERT_GE(append, 0);
+    ASSERT_EQ(::write(append, "hi\n", 3), 3);
+    const std::string name = "/dev/fd/" + std::to_string(append);
+    write_file_atomic(name, "appended\n");
+    EXPECT_EQ(read_text(path("log.txt")), "hi\nappended\n");
+    try {
+        AtomicFile file(name);
+        (void)file.tell();
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), name + ": cannot write: it is open for appending (>>), and this file's header is "
+                                                "patched once the rest is written: give a file path");
+    }
+    EXPECT_EQ(read_text(path("log.txt")), "hi\nappended\n");
+    // Two names of one descriptor are one output; a closed one cannot be written, said early.
+    EXPECT_TRUE(same_file(name, "/proc/self/fd/" + std::to_string(append)));
+    ::close(append);
+    EXPECT_THROW(check_writable(name), InputError);
+    EXPECT_THROW(AtomicFile{name}, InputError);
 }
 
 // A link to a file: the file gets the new bytes and the link stays a link; a dangling link is

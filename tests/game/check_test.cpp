@@ -289,6 +289,25 @@ TEST_F(Check, AReportFolderThatCannotBeMadeIsSaidBeforeTheRun) {
     EXPECT_EQ(r.err, "jostle check: " + path("file/report") + ": cannot create the report folder: Not a directory\n");
 }
 
+// A report folder that is the assets' sprites (or levels) folder is refused before the run:
+// its images would be new sprites of the game.
+TEST_F(Check, AReportFolderThatIsTheAssetsSpritesFolderIsRefused) {
+    const fs::path assets = path("assets");
+    fs::create_directories(assets);
+    fs::copy(fs::path(kAssets) / "levels", assets / "levels");
+    fs::copy(fs::path(kAssets) / "sprites", assets / "sprites");
+    const std::vector<std::string> sprites = listing(assets / "sprites");
+    const std::string s = scenario("drive.scn", kDrive);
+    for (const auto& [report, what] : {std::pair{assets / "sprites", "sprites"}, std::pair{assets / "levels", "levels"}}) {
+        const RunResult r = test::run_jostle_binary({"check", "--assets", assets.string(), s, "--report", report.string()});
+        EXPECT_EQ(r.status, 2);
+        EXPECT_EQ(r.out, "");
+        EXPECT_EQ(r.err, "jostle check: --report: '" + report.string() + "' is the " + what +
+                             " folder of the assets; give another folder\nRun 'jostle check --help' for usage.\n");
+    }
+    EXPECT_EQ(listing(assets / "sprites"), sprites);
+}
+
 TEST_F(Check, AMissingScreenshotGoldenFails) {
     const std::string s = scenario("drive.scn", kDrive);
     bless(s);

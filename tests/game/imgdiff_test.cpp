@@ -123,3 +123,28 @@ TEST_F(Imgdiff, BadUsageAndBadInputExitTwo) {
     run({path("a.png"), path("missing.png"), "--out", path("never.png")});
     EXPECT_FALSE(std::filesystem::exists(path("never.png")));
 }
+
+// A diff picture in the assets' sprites folder ($JOSTLE_ASSETS, else the source tree's) would
+// be a new sprite of the game, and one over a sprite or a level would replace it: refused.
+TEST_F(Imgdiff, ADiffPictureInTheAssetsIsRefused) {
+    const std::filesystem::path assets = std::filesystem::path(path("assets"));
+    std::filesystem::create_directories(assets);
+    std::filesystem::copy(std::filesystem::path(JOSTLE_ASSETS_DIR) / "levels", assets / "levels");
+    std::filesystem::copy(std::filesystem::path(JOSTLE_ASSETS_DIR) / "sprites", assets / "sprites");
+    const test::EnvGuard env("JOSTLE_ASSETS", assets.string());
+    const std::vector<std::string> sprites = test::file_names(assets / "sprites");
+    const std::pair<std::string, std::string> cases[] = {{"sprites/diff.png", "would be a new sprite 'diff'"},
+                                                         {"sprites/ship.png", "is the sprite 'ship'"},
+                                                         {"levels/arena.level", "is the level 'arena'"}};
+    for (const auto& [file, what] : cases) {
+        const std::string out = (assets / file).string();
+        const Outcome o = run({path("a.png"), path("very.png"), "--out", out});
+        EXPECT_EQ(o.status, 2) << file;
+        EXPECT_EQ(o.err, "jostle imgdiff: --out: '" + out + "' " + what + " of the assets; give another path\n"
+                         "Run 'jostle imgdiff --help' for usage.\n");
+    }
+    EXPECT_EQ(test::file_names(assets / "sprites"), sprites);
+    // Without assets there is nothing to protect.
+    const test::EnvGuard none("JOSTLE_ASSETS", path("no_assets"));
+    EXPECT_EQ(run({path("a.png"), path("very.png"), "--out", path("d.png")}).status, 1);
+}

@@ -440,6 +440,99 @@ TEST(CommandLine, AStandardOutputThatCannotBeWrittenIsAnErrorExitTwo) {
     EXPECT_EQ(ok.err, "");
 }
 
+// An --out folder that is the assets' sprites folder would make every frame a sprite (and
+// change every scenario's level-hash); the levels folder is the game's too. Either is refused
+// before the run, by any spelling, and nothing is written there.
+TEST_F(Play, AnOutFolderThatIsTheAssetsSpritesOrLevelsFolderIsRefused) {
+    const fs::path assets = path("assets");
+    fs::create_directories(assets);
+    fs::copy(fs::path(kAssets) / "levels", assets / "levels");
+    fs::copy(fs::path(kAssets) / "sprites", assets / "sprites");
+    const std::vector<std::string> sprites = test::file_names(assets / "sprites"), levels = test::file_names(assets / "levels");
+    const std::string s = scenario("s.scn", kDrive);
+    const std::pair<std::string, std::string> cases[] = {{(assets / "sprites").string(), "sprites"},
+                                                         {(assets / "levels").string() + "/", "levels"},
+                                                         {(assets / "levels" / ".." / "sprites").string(), "sprites"}};
+    for (const auto& [out, what] : cases) {
+        const RunResult r = run_jostle({"play", s, "--assets", assets.string(), "--out", out, "--frames", "3", "--quiet"});
+        EXPECT_EQ(r.status, 2) << out;
+        EXPECT_EQ(r.err, usage_error("--out: '" + out + "' is the " + what + " folder of the assets; give another folder"));
+    }
+    EXPECT_EQ(test::file_names(assets / "sprites"), sprites);
+    EXPECT_EQ(test::file_names(assets / "levels"), levels);
+    // A folder below them is not read by the game: frames may go there.
+    const RunResult below = run_jostle({"play", s, "--assets", assets.string(), "--out", (assets / "sprites" / "frames").string(),
+                                        "--frames", "3", "--size", "32x24", "--quiet"});
+    EXPECT_EQ(below.status, 0) << below.err;
+    EXPECT_TRUE(fs::exists(assets / "sprites" / "frames" / "frame_000003.png"));
+}
+
+// An output named /dev/stdout goes through the program's descriptor 1 (README: it "stays the
+// descriptor it stands for"), after and before what the program prints there, whatever stdout
+// is: a file (`>`), a file appended to (`>>`) or a pipe. Opened again by name, it started at
+// offset 0 of the file: the summary overwrote the trace's start, and `>>` lost the old lines.
+TEST_F(Play, AnOutputToDevStdoutGoesThroughTheDescriptorInOrder) {
+    if (!fs::exists("/bin/sh")) GTEST_SKIP() << "needs /bin/sh";
+    const std::string s = scenario("s.scn", kDrive);
+    // `jostle ARGS REDIRECT` through the shell.
+    const auto shell = [&](const std::string& redirect, const std::vector<std::string>& jostle_args) {
+        std::vector<std::string> args = {"-c", "exec \"$0\" \"$@\" " + redirect, JOSTLE_BINARY};
+        args.insert(args.end(), jostle_args.begin(), jostle_args.end());
+        return test::run_program("/bin/sh", args);
+    };
+    ASSERT_EQ(play({s, "--trace", path("ref.trace"), "--quiet"}).status, 0);
+    const std::string trace = read_text(path("ref.trace"));
+    ASSERT_THAT(trace, ::testing::StartsWith("jostle-trace 1\n"));
+
+    // `>`: the trace, then the summary after it.
+    const RunResult plain = shell("> '" + path("tr.txt") + "'", {"play", s, "--assets", kAssets, "--trace", "/dev/stdout"});
+    EXPECT_EQ(plain.status, 0) << plain.err;
+    const std::string written = read_text(path("tr.txt"));
+    EXPECT_EQ(written.substr(0, trace.size()), trace);
+    EXPECT_THAT(written.substr(std::min(trace.size(), written.size())), ::testing::StartsWith("played " + s + ": 10 ticks"));
+    EXPECT_THAT(written, ::testing::EndsWith("\ntrace: /dev/stdout\n"));
+    // `>>`: appended after what the file held.
+    std::ofstream(path("pre.txt"), std::ios::binary) << "hi\n";
+    const RunResult appended = shell(">> '" + path("pre.txt") + "'", {"play", s, "--assets", kAssets, "--trace", "/dev/stdout", "--quiet"});
+    EXPECT_EQ(appended.status, 0) << appended.err;
+    EXPECT_EQ(read_text(path("pre.txt")), "hi\n" + trace);
+    // A pipe, and the other spellings of descriptor 1.
+    for (const char* name : {"/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"}) {
+        const RunResult piped = play({s, "--trace", name, "--quiet"});
+        EXPECT_EQ(piped.status, 0) << piped.err;
+        EXPECT_EQ(piped.out, trace) << name;
+    }
+
+    // An animation, whose header is patched at the end, is whole and the summary follows it.
+    const std::vector<std::string> anim = {"play", s, "--assets", kAssets, "--frames", "0-5", "--size", "32x24", "--anim"};
+    const auto with = [](std::vector<std::string> args, const std::vector<std::string>& more) {
+        args.insert(args.end(), more.begin(), more.end());
+        return args;
+    };
+    ASSERT_EQ(run_jostle(with(anim, {path("ref.png"), "--quiet"})).status, 0);
+    const std::string apng = read_text(path("ref.png"));
+    const RunResult animated = shell("> '" + path("anim.png") + "'", with(anim, {"/dev/stdout"}));
+    EXPECT_EQ(animated.status, 0) << animated.err;
+    const std::string animated_bytes = read_text(path("anim.png"));
+    EXPECT_EQ(animated_bytes.substr(0, apng.size()), apng);
+    EXPECT_THAT(animated_bytes.substr(std::min(apng.size(), animated_bytes.size())), ::testing::StartsWith("played "));
+    // Appending cannot patch a header: said before any byte, and the file keeps its lines.
+    const RunResult refused = shell(">> '" + path("pre.txt") + "'", with(anim, {"/dev/stdout"}));
+    EXPECT_EQ(refused.status, 2);
+    EXPECT_EQ(refused.err, "jostle play: /dev/stdout: cannot write: it is open for appending (>>), and this file's header is "
+                           "patched once the rest is written: give a file path\n");
+    EXPECT_EQ(read_text(path("pre.txt")), "hi\n" + trace);
+
+    // imgdiff: the diff picture alone on stdout, the verdict on stderr.
+    ASSERT_EQ(run_jostle({"play", s, "--assets", kAssets, "--out", path("f"), "--frames", "9", "--size", "32x24", "--quiet"}).status, 0);
+    const std::string a = path("f/frame_000009.png"), b = std::string(JOSTLE_TEST_DATA) + "/mask_4x4.png";
+    ASSERT_EQ(run_jostle({"imgdiff", a, b, "--out", path("ref_diff.png")}).status, 1);
+    const RunResult diffed = shell("> '" + path("diff.png") + "'", {"imgdiff", a, b, "--out", "/dev/stdout"});
+    EXPECT_EQ(diffed.status, 1);
+    EXPECT_THAT(diffed.err, ::testing::StartsWith("differ: "));
+    EXPECT_EQ(read_text(path("diff.png")), read_text(path("ref_diff.png")));
+}
+
 // A level wider than the largest frame (8192 px) renders at its own shape, scaled down to
 // 8192 px on its longer side, instead of stopping at the renderer's limit.
 TEST_F(Play, ALevelWiderThanAFrameIsScaledDownToFit) {

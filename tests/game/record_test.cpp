@@ -620,6 +620,31 @@ TEST_F(Record, AScriptLongerThanAScenarioCanBeIsRefusedAtItsLine) {
     EXPECT_EQ(at_cap.ticks(), 16777216);
 }
 
+// -o /dev/stdout writes the scenario through descriptor 1 (opened again by name, it started at
+// offset 0 of a redirected file and the summary overwrote it). Standard output then holds the
+// scenario alone, a file play reads; the summary goes to stderr and says the file was not
+// read back (it cannot be): its bytes were replayed before they were sent.
+TEST_F(Record, AScenarioToDevStdoutIsTheWholeOfStandardOutput) {
+    if (!fs::exists("/bin/sh")) GTEST_SKIP() << "needs /bin/sh";
+    const std::string script = write("s.script", "hold up 3\n");
+    const std::string expected = read_text(record_file("ref.scn", "hold up 3\n"));
+    for (const std::string& redirect : {std::string(">"), std::string(">>")}) {
+        SCOPED_TRACE(redirect);
+        std::ofstream(path("f.scn"), std::ios::binary) << (redirect == ">" ? "old bytes\n" : "");
+        const RunResult r = test::run_program("/bin/sh", {"-c", "exec \"$0\" \"$@\" " + redirect + " '" + path("f.scn") + "'",
+                                                          JOSTLE_BINARY, "record", "--assets", kAssets, "--level", "arena", "-o",
+                                                          "/dev/stdout", "--script", script});
+        EXPECT_EQ(r.status, 0);
+        EXPECT_EQ(r.err, "recorded 3 ticks of level arena to /dev/stdout (not read back, as it is not a regular file: the bytes "
+                         "sent were replayed first, the same state on every tick)\n");
+        EXPECT_EQ(read_text(path("f.scn")), expected);
+    }
+    EXPECT_EQ(play_hashes(path("f.scn"), "f.trace"), play_hashes(path("ref.scn"), "ref.trace"));
+    const RunResult piped = run_record({"--level", "arena", "-o", "/dev/stdout", "--script", script});
+    EXPECT_EQ(piped.status, 0);
+    EXPECT_EQ(piped.out, expected);
+}
+
 // -o naming a level or a sprite of the assets (the game's own files) is refused before the
 // recording, and the file is left as it was.
 TEST_F(Record, AnOutputNamingALevelOrASpriteOfTheAssetsIsRefused) {

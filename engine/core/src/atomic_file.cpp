@@ -5,10 +5,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <system_error>
 #include <utility>
 
@@ -44,9 +46,64 @@ Target target_of(const std::string& path, std::string& resolved) {
     return Target::replaceable;
 }
 
+// The descriptor of this process that `path` stands for (/dev/stdout, /dev/fd/N,
+// /proc/self/fd/N, /proc/<our pid>/fd/N), else -1. Opening such a path again would make a new
+// open file: at offset 0 of a redirected stdout (overwriting what is there and what the
+// program prints next), and without its O_APPEND (`>>`).
+int own_descriptor(const std::string& path) {
+    const std::string p = std::filesystem::path(path).lexically_normal().string();
+    if (p == "/dev/stdin") return 0;
+    if (p == "/dev/stdout") return 1;
+    if (p == "/dev/stderr") return 2;
+    std::string_view number;
+    for (const std::string& folder : {std::string("/dev/fd/"), std::string("/proc/self/fd/"), std::string("/proc/thread-self/fd/"),
+                                      "/proc/" + std::to_string(::getpid()) + "/fd/"}) {
+        if (p.starts_with(folder)) number = std::string_view(p).substr(folder.size());
+    }
+    if (number.empty() || number.size() > 9 || number.find_first_not_of("0123456789") != std::string_view::npos) return -1;
+    return std::stoi(std::string(number));
+}
+
+// Sends what the program has printed to descriptor fd so far (std::cout's buffer and C's),
+// so that bytes written to it directly come after them.
+void flush_printed(int fd) {
+    if (fd == 1) {
+        std::cout.flush();
+        std::fflush(stdout);
+    } else if (fd == 2) {
+        std::clog.flush();
+        std::cerr.flush();
+        std::fflush(stderr);
+    }
+}
+
+// Whether fd is open for writing.
+bool writable_descriptor(int fd) {
+    const int flags = ::fcntl(fd, F_GETFL);
+    return flags >= 0 && (flags & O_ACCMODE) != O_RDONLY;
+}
+
 }  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+    if (const int fd = own_descriptor(path_); fd >= 0) {
+        // Written through a copy of the descriptor itself, sharing its offset and O_APPEND,
+        // unbuffered and after what was printed to it: the bytes land where the program's
+        // own output to it would, in the order the program made them.
+        if (!writable_descriptor(fd)) fail(std::strerror(EBADF));
+        const int copy = ::fcntl(fd, F_DUPFD_CLOEXEC, 3);
+        if (copy < 0) fail(std::strerror(errno));
+        file_ = ::fdopen(copy, "wb");
+        if (file_ == nullptr) {
+            const int e = errno;
+            ::close(copy);
+            fail(std::strerror(e));
+        }
+        std::setvbuf(file_, nullptr, _IONBF, 0);
+        descriptor_ = fd;
+        stream_ = true;
+        return;
+    }
     std::string resolved;
     switch (target_of(path_, resolved)) {
         case Target::folder:
@@ -112,6 +169,7 @@ void AtomicFile::fail(const std::string& what) const {
 
 void AtomicFile::write(const void* data, std::size_t size) {
     JOSTLE_ASSERT(file_ != nullptr, "AtomicFile::write after commit");
+    if (descriptor_ >= 0) flush_printed(descriptor_);
     if (size != 0 && std::fwrite(data, 1, size, file_) != size) {
         const int e = errno;
         fail(std::strerror(e));
@@ -126,6 +184,11 @@ void AtomicFile::write(const void* data, std::size_t size) {
 
 std::int64_t AtomicFile::tell() {
     JOSTLE_ASSERT(file_ != nullptr, "AtomicFile::tell after commit");
+    // A descriptor opened to append (`>> file`) takes every write at its end: a seek back
+    // would not patch, it would add the bytes again.
+    if (descriptor_ >= 0 && (::fcntl(::fileno(file_), F_GETFL) & O_APPEND) != 0) {
+        fail("it is open for appending (>>), and this file's header is patched once the rest is written: give a file path");
+    }
     const long at = std::ftell(file_);
     if (at < 0) fail_seek(errno);
     return at;
@@ -133,6 +196,7 @@ std::int64_t AtomicFile::tell() {
 
 void AtomicFile::seek(std::int64_t offset) {
     JOSTLE_ASSERT(file_ != nullptr, "AtomicFile::seek after commit");
+    end_ = std::max(end_, tell());
     if (std::fseek(file_, static_cast<long>(offset), SEEK_SET) != 0) fail_seek(errno);
 }
 
@@ -147,9 +211,15 @@ void AtomicFile::flush() {
 void AtomicFile::commit() {
     JOSTLE_ASSERT(file_ != nullptr, "AtomicFile::commit twice");
     if (stream_) {
-        // Written in place: every byte must have gone (a full device says so here).
-        const int flushed = std::fflush(file_);
-        const int e = errno;
+        // Written in place: every byte must have gone (a full device says so here). A
+        // descriptor the program shares is left after the last byte written, not after a
+        // patched header, or what the program prints next would overwrite the rest.
+        int flushed = std::fflush(file_);
+        int e = errno;
+        if (flushed == 0 && end_ >= 0 && std::ftell(file_) < end_ && std::fseek(file_, static_cast<long>(end_), SEEK_SET) != 0) {
+            flushed = -1;
+            e = errno;
+        }
         const int closed = std::fclose(file_);
         file_ = nullptr;
         if (flushed != 0 || closed != 0) fail(std::strerror(flushed != 0 ? e : errno));
@@ -181,6 +251,10 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
 }
 
 void check_writable(const std::string& path) {
+    if (const int fd = own_descriptor(path); fd >= 0) {
+        if (!writable_descriptor(fd)) throw InputError(SourceLocation{path, 0, 0}, "cannot write: " + std::string(std::strerror(EBADF)));
+        return;
+    }
     std::string resolved;
     if (target_of(path, resolved) == Target::stream) return;
     const AtomicFile probe(path);
@@ -190,6 +264,12 @@ bool same_file(const std::string& output, const std::string& other) {
     if (output.empty() || other.empty()) return false;
     struct stat a {};
     struct stat b {};
+    // Two of this process's descriptors on one file or pipe (/dev/stdout and /dev/fd/1, or
+    // /dev/stderr after 2>&1) are one output: the second's bytes would land in the first's.
+    const int fa = own_descriptor(output), fb = own_descriptor(other);
+    if (fa >= 0 && fb >= 0) {
+        return fa == fb || (::fstat(fa, &a) == 0 && ::fstat(fb, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino);
+    }
     const bool a_exists = ::stat(output.c_str(), &a) == 0;
     const bool b_exists = ::stat(other.c_str(), &b) == 0;
     if (a_exists && b_exists) return S_ISREG(a.st_mode) && S_ISREG(b.st_mode) && a.st_dev == b.st_dev && a.st_ino == b.st_ino;

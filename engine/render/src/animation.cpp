@@ -218,6 +218,8 @@ struct AnimationWriter::Impl {
         pending_blend = changes ? kBlendOver : kBlendSource;
         const PngChunks chunks = split_png(pending_png);
         if (added == 0) {
+            // A target that cannot be patched later (a pipe, `>>`) says so before any byte.
+            (void)file.tell();
             write(kPngSignature);
             write_chunk("IHDR", chunks.ihdr);
             actl_offset = file.tell() + 8;

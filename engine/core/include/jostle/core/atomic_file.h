@@ -7,7 +7,11 @@
 // A path that is a link to a regular file replaces the file it points at (the link stays). A
 // target that is not a regular file (a device such as /dev/null, a FIFO, a socket, /dev/stdout
 // on a pipe) cannot be replaced: it is written in place, and commit() reports any byte that did
-// not arrive. A folder is an error.
+// not arrive. A path that stands for one of this process's descriptors (/dev/stdout,
+// /dev/stderr, /dev/fd/N, /proc/self/fd/N) is never opened again: the bytes go through the
+// descriptor itself, at its offset (after what the program printed there, appending after
+// `>>`), unbuffered, so they keep their order with the program's own output to it. A folder
+// is an error.
 #pragma once
 
 #include <cstdint>
@@ -46,6 +50,8 @@ private:
     std::string rename_to_;  // path_, or the regular file a link at path_ points at
     std::string temp_path_;  // empty when written in place
     bool stream_ = false;    // written in place (not a regular file)
+    int descriptor_ = -1;    // the descriptor of this process the path stands for, if one
+    std::int64_t end_ = -1;  // where the bytes end, once seek() has moved back from there
     std::FILE* file_ = nullptr;
     bool committed_ = false;
 };
