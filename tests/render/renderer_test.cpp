@@ -3,6 +3,8 @@
 // alpha blending, the camera, batching into one draw call, and run-to-run identical frames.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "font.h"
 #include "jostle/core/error.h"
 #include "jostle/render/renderer.h"
@@ -229,6 +231,58 @@ TEST(RendererOsmesa, SpritesPastTheAtlasGrowItAndEverySpriteStillDraws) {
     EXPECT_EQ(at(im, 599, 339), kWhite);
     EXPECT_EQ(at(im, 650, 320), kBlack);
     EXPECT_EQ(at(im, 300, 290), kBlack);
+}
+
+// Which texel a pixel shows is chosen in the sprite's own coordinates, so a sprite draws the
+// same pixels wherever it was packed: after other sprites, in a grown atlas. (With atlas
+// coordinates, the rounding of x / width moved texel boundaries, and a new sprite in the
+// assets changed other sprites' pixels in every screenshot.) A sprite of distinct texels,
+// turned, scaled and placed at fractional positions, in three renderers.
+TEST(RendererOsmesa, ASpriteDrawsTheSamePixelsWhereverTheAtlasHoldsIt) {
+    Image pattern{13, 11, std::vector<std::uint8_t>(13u * 11u * 4u)};
+    for (int y = 0; y < 11; ++y) {
+        for (int x = 0; x < 13; ++x) {
+            std::uint8_t* p = pattern.rgba.data() + (y * 13 + x) * 4;
+            p[0] = static_cast<std::uint8_t>(x * 19);
+            p[1] = static_cast<std::uint8_t>(y * 23);
+            p[2] = static_cast<std::uint8_t>((x + y) % 2 * 255);
+            p[3] = static_cast<std::uint8_t>(x == 0 || y == 0 ? 128 : 255);
+        }
+    }
+    const auto draw = [&](Renderer& r, SpriteId id) {
+        r.begin_frame(240, 240, kBlack);
+        int k = 0;
+        for (int row = 0; row < 6; ++row) {
+            for (int col = 0; col < 6; ++col, ++k) {
+                const float angle = 0.37f * static_cast<float>(k) - 3.0f;
+                const float scale = k % 3 == 0 ? 1.0f / 3.0f + 0.25f * static_cast<float>(k % 7) : 0.9f + 0.17f * static_cast<float>(k % 11);
+                const Vec2 at{20.0f + 40.0f * static_cast<float>(col) + 0.125f * static_cast<float>(k % 8),
+                              20.0f + 40.0f * static_cast<float>(row) + 0.3f * static_cast<float>(k % 5)};
+                r.draw_sprite(id, at, k % 4 == 0 ? 0.0f : angle, {scale, scale * (k % 2 == 0 ? 1.0f : 1.3f)});
+            }
+        }
+        return r.end_frame();
+    };
+    Renderer first;
+    const Image alone = draw(first, first.add_sprite(pattern));
+    Renderer after_one;
+    after_one.add_sprite(solid_image(5, 3, kRed));  // moves it 6 texels along the shelf
+    const Image shifted = draw(after_one, after_one.add_sprite(pattern));
+    Renderer grown;
+    for (int i = 0; i < 40; ++i) grown.add_sprite(solid_image(64, 64, kGreen));  // the atlas doubles
+    const Image in_grown = draw(grown, grown.add_sprite(pattern));
+    int drawn = 0;
+    for (int y = 0; y < 240; ++y) {
+        for (int x = 0; x < 240; ++x) drawn += at(alone, x, y) != kBlack;
+    }
+    EXPECT_GT(drawn, 3000);
+    const auto differing = [](const Image& a, const Image& b) {
+        int n = 0;
+        for (std::size_t i = 0; i < a.rgba.size(); i += 4) n += std::memcmp(&a.rgba[i], &b.rgba[i], 4) != 0;
+        return n;
+    };
+    EXPECT_EQ(differing(alone, shifted), 0);
+    EXPECT_EQ(differing(alone, in_grown), 0);
 }
 
 TEST(RendererOsmesa, ASpriteOfNoPixelsOrTooLargeOrAFullAtlasIsAnInputError) {

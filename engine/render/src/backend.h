@@ -13,7 +13,8 @@ namespace jostle::detail {
 
 struct Vertex {
     float x, y;  // image pixels, y down
-    float u, v;  // atlas texture coordinates, 0..1
+    float u, v;  // texels from the sprite's top-left corner, 0..w and 0..h
+    std::uint16_t rect_x, rect_y, rect_w, rect_h;  // the sprite's texels in the atlas
     std::uint8_t r, g, b, a;
 };
 

@@ -19,26 +19,35 @@ namespace {
 
 constexpr const char* kVertexShader = R"(#version 330 core
 layout(location = 0) in vec2 position;  // image pixels, y down
-layout(location = 1) in vec2 uv;
+layout(location = 1) in vec2 uv;       // texels from the sprite's corner
 layout(location = 2) in vec4 color;
+layout(location = 3) in uvec4 rect;    // the sprite in the atlas: x, y, w, h texels
 uniform vec2 viewport;
 out vec2 v_uv;
 out vec4 v_color;
+flat out uvec4 v_rect;
 void main() {
     // Image row 0 is the top: y down in pixels is y up in clip space.
     gl_Position = vec4(position.x / viewport.x * 2.0 - 1.0, 1.0 - position.y / viewport.y * 2.0, 0.0, 1.0);
     v_uv = uv;
     v_color = color;
+    v_rect = rect;
 }
 )";
 
 constexpr const char* kFragmentShader = R"(#version 330 core
 in vec2 v_uv;
 in vec4 v_color;
+flat in uvec4 v_rect;
 uniform sampler2D atlas;
 out vec4 out_color;
 void main() {
-    vec4 c = texture(atlas, v_uv) * v_color;
+    // The nearest texel, chosen in the sprite's own coordinates and only then placed in the
+    // atlas: which texel a pixel shows does not depend on where the sprite was packed (an
+    // atlas coordinate's rounding did), and never falls outside the sprite.
+    ivec2 size = ivec2(v_rect.zw);
+    ivec2 texel = clamp(ivec2(floor(v_uv)), ivec2(0), size - 1) + ivec2(v_rect.xy);
+    vec4 c = texelFetch(atlas, texel, 0) * v_color;
     out_color = vec4(c.rgb * c.a, c.a);  // premultiplied: blending is right over any alpha
 }
 )";
@@ -86,7 +95,8 @@ public:
         glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, x)));
         glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, u)));
         glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, r)));
-        for (GLuint i = 0; i < 3; ++i) glEnableVertexAttribArray(i);
+        glVertexAttribIPointer(3, 4, GL_UNSIGNED_SHORT, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, rect_x)));
+        for (GLuint i = 0; i < 4; ++i) glEnableVertexAttribArray(i);
 
         glGenTextures(1, &texture_);
         glBindTexture(GL_TEXTURE_2D, texture_);

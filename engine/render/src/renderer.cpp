@@ -50,7 +50,6 @@ struct Renderer::Impl {
     int draw_calls = 0;
 
     Vec2 to_image(Vec2 world) const { return camera.zoom * (world - camera.origin); }
-    float white_uv() const { return 1.0f / static_cast<float>(atlas.width); }  // centre of the white block
 
     void grow_atlas(int side) {
         Image bigger{side, side, std::vector<std::uint8_t>(static_cast<std::size_t>(side) * static_cast<std::size_t>(side) * 4u, 0)};
@@ -62,12 +61,19 @@ struct Renderer::Impl {
         ++atlas_version;
     }
 
-    void vertex(Vec2 p, float u, float v, Color c) { vertices.push_back({p.x, p.y, u, v, c.r, c.g, c.b, c.a}); }
+    // u, v in texels from the sprite's corner (the backend picks the texel in the sprite's own
+    // coordinates, so a sprite draws the same wherever it was packed).
+    void vertex(Vec2 p, float u, float v, const Rect& s, Color c) {
+        vertices.push_back({p.x, p.y, u, v, static_cast<std::uint16_t>(s.x), static_cast<std::uint16_t>(s.y),
+                            static_cast<std::uint16_t>(s.w), static_cast<std::uint16_t>(s.h), c.r, c.g, c.b, c.a});
+    }
     void solid_triangle(Vec2 a, Vec2 b, Vec2 c, Color color) {
-        const float w = white_uv();
-        vertex(a, w, w, color);
-        vertex(b, w, w, color);
-        vertex(c, w, w, color);
+        // The centre of the white block.
+        constexpr Rect white{0, 0, kWhite, kWhite};
+        constexpr float w = 0.5f * kWhite;
+        vertex(a, w, w, white, color);
+        vertex(b, w, w, white, color);
+        vertex(c, w, w, white, color);
     }
     void solid_quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d, Color color) {
         solid_triangle(a, b, c, color);
@@ -210,14 +216,12 @@ void Renderer::draw_sprite(SpriteId id, Vec2 center, float angle, Vec2 scale, Co
     const Vec2 half{0.5f * static_cast<float>(rect.w) * scale.x, 0.5f * static_cast<float>(rect.h) * scale.y};
     const Rot q = Rot::from_angle(angle);
     const Vec2 corner[4] = {{-half.x, -half.y}, {half.x, -half.y}, {half.x, half.y}, {-half.x, half.y}};
-    const float inv = 1.0f / static_cast<float>(r.atlas.width);
-    const float u0 = static_cast<float>(rect.x) * inv, u1 = static_cast<float>(rect.x + rect.w) * inv;
-    const float v0 = static_cast<float>(rect.y) * inv, v1 = static_cast<float>(rect.y + rect.h) * inv;
-    const float us[4] = {u0, u1, u1, u0};
-    const float vs[4] = {v0, v0, v1, v1};
+    const float w = static_cast<float>(rect.w), h = static_cast<float>(rect.h);
+    const float us[4] = {0.0f, w, w, 0.0f};
+    const float vs[4] = {0.0f, 0.0f, h, h};
     Vec2 p[4];
     for (int i = 0; i < 4; ++i) p[i] = r.to_image(center + rotate(q, corner[i]));
-    for (int i : {0, 1, 2, 0, 2, 3}) r.vertex(p[i], us[i], vs[i], tint);
+    for (int i : {0, 1, 2, 0, 2, 3}) r.vertex(p[i], us[i], vs[i], rect, tint);
 }
 
 void Renderer::fill_rect(const Aabb& box, Color color) { fill_shape(box, color); }
@@ -305,21 +309,19 @@ Vec2 Renderer::draw_text(Vec2 image_position, std::string_view text, Color color
     const std::vector<detail::PlacedGlyph> placed = detail::layout_text(text, &width, &height);
     if (!is_finite(image_position)) return {};
     const float s = static_cast<float>(scale);
-    const float inv = 1.0f / static_cast<float>(r.atlas.width);
     for (const detail::PlacedGlyph& p : placed) {
         const auto code = static_cast<unsigned char>(p.c);
         const unsigned index = (code >= 32 && code <= 126) ? code - 32u : static_cast<unsigned>('?' - 32);
         const Impl::Rect& rect = r.sprites[r.first_glyph - 1 + index];
         const Vec2 a = image_position + s * Vec2{static_cast<float>(p.x), static_cast<float>(p.y)};
         const Vec2 b = a + s * Vec2{static_cast<float>(rect.w), static_cast<float>(rect.h)};
-        const float u0 = static_cast<float>(rect.x) * inv, u1 = static_cast<float>(rect.x + rect.w) * inv;
-        const float v0 = static_cast<float>(rect.y) * inv, v1 = static_cast<float>(rect.y + rect.h) * inv;
-        r.vertex(a, u0, v0, color);
-        r.vertex({b.x, a.y}, u1, v0, color);
-        r.vertex(b, u1, v1, color);
-        r.vertex(a, u0, v0, color);
-        r.vertex(b, u1, v1, color);
-        r.vertex({a.x, b.y}, u0, v1, color);
+        const float w = static_cast<float>(rect.w), h = static_cast<float>(rect.h);
+        r.vertex(a, 0.0f, 0.0f, rect, color);
+        r.vertex({b.x, a.y}, w, 0.0f, rect, color);
+        r.vertex(b, w, h, rect, color);
+        r.vertex(a, 0.0f, 0.0f, rect, color);
+        r.vertex(b, w, h, rect, color);
+        r.vertex({a.x, b.y}, 0.0f, h, rect, color);
     }
     return s * Vec2{static_cast<float>(width), static_cast<float>(height)};
 }
