@@ -315,6 +315,42 @@ TEST_F(Check, AStaleScreenshotGoldenFails) {
     EXPECT_TRUE(fs::exists(path("drive.tick_5.png")));  // only an update removes it
 }
 
+// A golden is exactly NAME.tick_T.png with T a tick as the program writes it. Files that only
+// start like one (a user's backup, a report's images, a zero-padded or signed tick, a tick
+// past the limit) are the user's: never stale, never removed. A real stale golden among them
+// is still found, and only it is removed.
+TEST_F(Check, OnlyExactGoldenNamesAreStaleAndUpdateRemovesNothingElse) {
+    const std::string s = scenario("drive.scn", kDrive);
+    bless(s);
+    const std::vector<std::string> users = {
+        "drive.tick_29.orig.png", "drive.tick_before-fix.png", "drive.tick_29.actual.png", "drive.tick_29.diff.png",
+        "drive.tick_29.expected.png", "drive.tick_029.png", "drive.tick_+5.png", "drive.tick_-5.png", "drive.tick_.png",
+        "drive.tick_5 .png", "drive.tick_16777216.png", "drive.tick_99999999999999999999.png", "drive.tick_5.PNG",
+        "drive.tick_5.png.bak", "drivex.tick_5.png"};
+    for (const std::string& name : users) fs::copy_file(path("drive.tick_29.png"), path(name));
+
+    RunResult r = check({folder()});
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, pass_line(s, 30, 1) + "\nchecked 1 scenarios: 1 passed, 0 failed\n");
+
+    fs::copy_file(path("drive.tick_29.png"), path("drive.tick_5.png"));
+    r = check({folder()});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run 'jostle check --update' to remove it)\n"
+                     "checked 1 scenarios: 0 passed, 1 failed\n");
+
+    r = check({"--update", folder()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "updated " + s + ": drive.tick_5.png removed\nchecked 1 scenarios: 1 updated\n");
+    std::vector<std::string> expected = users;
+    expected.insert(expected.end(), {"drive.scn", "drive.tick_29.png", "drive.trace"});
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(listing(dir_.path()), expected);
+}
+
 TEST_F(Check, ToleranceAndMaxPixelsLetSmallScreenshotDifferencesPass) {
     const std::string s = scenario("drive.scn", kDrive);
     bless(s);

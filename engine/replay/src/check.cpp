@@ -14,6 +14,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
@@ -21,6 +22,7 @@
 #include "jostle/core/text.h"
 #include "jostle/render/png_io.h"
 #include "jostle/replay/replay.h"
+#include "jostle/replay/scenario.h"
 
 namespace jostle {
 namespace fs = std::filesystem;
@@ -29,6 +31,23 @@ namespace {
 std::string golden_image_path(const std::string& scenario_path, std::int64_t tick) {
     const fs::path p(scenario_path);
     return (p.parent_path() / (p.stem().string() + ".tick_" + std::to_string(tick) + ".png")).string();
+}
+
+// Whether `file` is a name golden_image_path gives scenario `name`: exactly NAME.tick_T.png
+// with T a tick as std::to_string writes it (no sign, no leading zero, below the tick limit).
+// Anything else beside the goldens (pickup.tick_79.orig.png, a report's
+// pickup.tick_80.actual.png) is the user's, never a stale golden.
+bool is_golden_image_name(std::string_view file, std::string_view name) {
+    const std::string_view prefix = ".tick_", suffix = ".png";
+    if (file.size() < name.size() + prefix.size() + suffix.size() || !file.starts_with(name) ||
+        file.substr(name.size()).substr(0, prefix.size()) != prefix || !file.ends_with(suffix)) {
+        return false;
+    }
+    const std::string_view digits = file.substr(name.size() + prefix.size(), file.size() - name.size() - prefix.size() - suffix.size());
+    std::int64_t tick = -1;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), tick);
+    return ec == std::errc{} && end == digits.data() + digits.size() && tick >= 0 && tick < kMaxScenarioTicks &&
+           std::to_string(tick) == digits;
 }
 
 // The entities and fields that differ between two dumps of the same tick.
@@ -213,12 +232,10 @@ ScenarioCheck check_scenario(const Game& game, const std::string& scenario_path,
             c.images.push_back(std::move(check));
         }
         const fs::path folder = fs::path(scenario_path).parent_path().empty() ? fs::path(".") : fs::path(scenario_path).parent_path();
-        const std::string prefix = c.name + ".tick_";
         std::error_code ec;
         for (const auto& entry : fs::directory_iterator(folder, ec)) {
             const std::string file = entry.path().filename().string();
-            if (file.rfind(prefix, 0) == 0 && entry.path().extension() == ".png" &&
-                !wanted.count((fs::path(scenario_path).parent_path() / file).string())) {
+            if (is_golden_image_name(file, c.name) && !wanted.count((fs::path(scenario_path).parent_path() / file).string())) {
                 c.stale_goldens.push_back((fs::path(scenario_path).parent_path() / file).string());
             }
         }
