@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstdlib>
 #include <csignal>
+#include <filesystem>
 #include <mutex>
 #include <optional>
 #include <ostream>
@@ -17,6 +18,7 @@
 #include "jostle/replay/check.h"
 
 namespace jostle {
+namespace fs = std::filesystem;
 namespace {
 
 int usage(std::ostream& err, const std::string& message) {
@@ -48,7 +50,8 @@ options:
                     changed. All new files are written first and renamed together, so an
                     interrupted update changes nothing. Missing goldens are created only so.
   --report DIR      write DIR/report.html (each failing scenario with its expected, actual
-                    and diff images side by side) and DIR/junit.xml (every scenario)
+                    and diff images side by side) and DIR/junit.xml (every scenario); DIR
+                    may not be a folder of the scenarios checked (it would mix with goldens)
   --jobs N          check N scenarios at once, 1 to 256 (default 1)
   --tolerance N     per-channel difference (0..255) that still counts as equal in images
   --max-pixels N    how many pixels may differ in each image (0..9223372036854775807; default 0)
@@ -127,7 +130,20 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
 
     try {
         const game::ArenaGame game(assets);
-        const std::vector<std::string> scenarios = select_shard(collect_scenarios(paths));
+        const std::vector<std::string> all_scenarios = collect_scenarios(paths);
+        if (!report.empty()) {
+            // The report's images and pages among goldens would be mistaken for them, or
+            // committed with them: a scenario's folder is not a report folder.
+            for (const std::string& scenario : all_scenarios) {
+                const fs::path folder = fs::path(scenario).parent_path().empty() ? fs::path(".") : fs::path(scenario).parent_path();
+                std::error_code ec;
+                if (fs::equivalent(report, folder, ec)) {
+                    return usage(err, "--report: '" + report + "' holds the scenario '" + scenario +
+                                          "' and its goldens; give the report a folder of its own");
+                }
+            }
+        }
+        const std::vector<std::string> scenarios = select_shard(all_scenarios);
         if (!report.empty()) create_report_folder(report);  // a bad --report is said before the run
         std::vector<ScenarioCheck> checks(scenarios.size());
         std::atomic<std::size_t> next{0};

@@ -701,6 +701,48 @@ TEST_F(Check, UsageErrorsExitTwoWithTheirMessage) {
 
 // ---- --report --------------------------------------------------------------------------
 
+// A report into a folder of the scenarios checked would mix its images and pages with the
+// goldens (and be committed with them): a usage error before anything runs, however the
+// folder is written. A folder below it, or another scenario's folder, is fine.
+TEST_F(Check, AReportIntoAScenarioFolderIsRefusedBeforeTheRun) {
+    const fs::path other = dir_.path() / "other";
+    fs::create_directories(other);
+    const std::string s = scenario("drive.scn", kDrive);
+    const std::string t = scenario("turn.scn", kTurn, other);
+    bless(s);
+    bless(t);
+    const auto before = snapshot(dir_.path());
+    const auto before_other = snapshot(other);
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{s, "--report", folder()}, folder()},
+        {{s, "--update", "--report", folder() + "/."}, folder() + "/."},
+        {{t, folder(), "--report", (other / ".." / "other").string()}, (other / ".." / "other").string()},
+    };
+    for (const auto& [args, report] : cases) {
+        SCOPED_TRACE(report);
+        const std::string first = args[0] == t ? t : s;
+        const RunResult r = check(args);
+        EXPECT_EQ(r.status, 2);
+        EXPECT_EQ(r.out, "");
+        EXPECT_EQ(r.err, usage_error("--report: '" + report + "' holds the scenario '" + first +
+                                     "' and its goldens; give the report a folder of its own"));
+        EXPECT_TRUE(snapshot(dir_.path()) == before);
+        EXPECT_TRUE(snapshot(other) == before_other);
+    }
+    // Relative to the working folder, as typed.
+    const RunResult r = test::run_jostle_binary({"check", "--assets", kAssets, "drive.scn", "--report", "."}, "/dev/null", folder());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, usage_error("--report: '.' holds the scenario 'drive.scn' and its goldens; give the report a folder of its own"));
+    EXPECT_TRUE(snapshot(dir_.path()) == before);
+
+    // Another scenario's folder, or one below this one's, holds no golden of the scenarios checked.
+    const RunResult below = check({s, "--report", (dir_.path() / "report").string()});
+    EXPECT_EQ(below.status, 0) << below.out << below.err;
+    const RunResult elsewhere = check({s, "--report", other.string()});
+    EXPECT_EQ(elsewhere.status, 0) << elsewhere.out << elsewhere.err;
+    EXPECT_TRUE(fs::exists(other / "report.html"));
+}
+
 // The elements <img class="C" src="S"> of an HTML text, as (C, S).
 std::vector<std::pair<std::string, std::string>> images_in(const std::string& html) {
     std::vector<std::pair<std::string, std::string>> out;
