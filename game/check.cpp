@@ -15,6 +15,7 @@
 #include "arena.h"
 #include "jostle/core/error.h"
 #include "jostle/core/interrupt.h"
+#include "jostle/core/text.h"
 #include "jostle/replay/check.h"
 
 namespace jostle {
@@ -196,7 +197,7 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             for (const std::string& line : lines) out << line << "\n";
             std::size_t expectations_failed = 0;
             for (const ScenarioCheck& c : checks) expectations_failed += c.failed_expectations.empty() ? 0 : 1;
-            out << "checked " << checks.size() << " scenarios: " << lines.size() << " updated";
+            out << "checked " << counted(static_cast<std::int64_t>(checks.size()), "scenario") << ": " << lines.size() << " updated";
             if (expectations_failed > 0) {
                 out << ", " << expectations_failed << " with failing expectations (an update cannot fix those)";
             }
@@ -205,7 +206,7 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             return expectations_failed > 0 ? 1 : 0;
         }
         if (!report.empty()) write_report(report, checks);
-        out << "checked " << checks.size() << " scenarios: " << checks.size() - static_cast<std::size_t>(failed + bad)
+        out << "checked " << counted(static_cast<std::int64_t>(checks.size()), "scenario") << ": " << checks.size() - static_cast<std::size_t>(failed + bad)
             << " passed, " << failed << " failed" << (bad > 0 ? ", " + std::to_string(bad) + " with bad input" : "") << "\n";
         if (update && bad > 0) err << "jostle check: nothing updated: fix the bad input first\n";
         return bad > 0 ? 2 : failed > 0 ? 1 : 0;

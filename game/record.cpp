@@ -162,7 +162,7 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
             from = load_scenario(from_path, game.vocabulary());
             if (*at > from->ticks()) {
                 return usage(err, "--at " + std::to_string(*at) + ": " + from_path + " has only " +
-                                      std::to_string(from->ticks()) + " ticks");
+                                      counted(from->ticks(), "tick"));
             }
             desc.from = &*from;
             desc.keep_ticks = *at;
@@ -229,7 +229,7 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
             err << "jostle record: note: " << where << ":" << line << ": expectation fails in this run at tick "
                 << r.expectation->tick << ": expected " << r.expectation->text << ", found " << r.actual << "\n";
         }
-        out << "recorded " << recording.hashes.size() << " ticks of level " << recording.scenario.level << " to " << out_path
+        out << "recorded " << counted(static_cast<std::int64_t>(recording.hashes.size()), "tick") << " of level " << recording.scenario.level << " to " << out_path
             << " (read back and replayed: the same state on every tick)\n";
         return 0;
     } catch (const InputError& e) {

@@ -138,7 +138,7 @@ protected:
 
     std::string pass_line(const std::string& scenario_path, int ticks, int screenshots) const {
         return "PASS " + scenario_path + " (" + std::to_string(ticks) + " ticks, 0 expectations, " + std::to_string(screenshots) +
-               " screenshots)";
+               (screenshots == 1 ? " screenshot)" : " screenshots)");
     }
 
     const test::TempFolder dir_{"check"};
@@ -211,7 +211,7 @@ TEST_F(Check, ARuleChangeIsCaughtAtTheFirstTickItCanMatter) {
     EXPECT_TRUE(c.failed_expectations.empty());
 
     EXPECT_EQ(describe_check(c),
-              "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+              "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
               "  trace: first divergent tick 10 (expected hash " + hex16(golden.hashes[10]) + ", got " + hex16(run.hashes[10]) + ")\n"
               "  at tick 10 (the first dumped tick from there on), expected -> actual:\n"
               "    player x: 102.5 -> " + c.changes[0].actual + "\n"
@@ -271,10 +271,10 @@ TEST_F(Check, AMissingTraceFailsAndAPlainCheckCreatesNothing) {
     const RunResult r = check({s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
                      "  trace: no golden " + path("drive.trace") + " (run 'jostle check --update' to create it)\n"
                      "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
-                     "checked 1 scenarios: 0 passed, 1 failed\n");
+                     "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_EQ(listing(dir_.path()), std::vector<std::string>{"drive.scn"});
 }
 
@@ -296,9 +296,9 @@ TEST_F(Check, AMissingScreenshotGoldenFails) {
     const RunResult r = check({s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
                      "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
-                     "checked 1 scenarios: 0 passed, 1 failed\n");
+                     "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_EQ(listing(dir_.path()), (std::vector<std::string>{"drive.scn", "drive.trace"}));
 }
 
@@ -309,9 +309,9 @@ TEST_F(Check, AStaleScreenshotGoldenFails) {
     const RunResult r = check({s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
                      "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run 'jostle check --update' to remove it)\n"
-                     "checked 1 scenarios: 0 passed, 1 failed\n");
+                     "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_TRUE(fs::exists(path("drive.tick_5.png")));  // only an update removes it
 }
 
@@ -332,19 +332,19 @@ TEST_F(Check, OnlyExactGoldenNamesAreStaleAndUpdateRemovesNothingElse) {
     RunResult r = check({folder()});
     EXPECT_EQ(r.status, 0) << r.out;
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, pass_line(s, 30, 1) + "\nchecked 1 scenarios: 1 passed, 0 failed\n");
+    EXPECT_EQ(r.out, pass_line(s, 30, 1) + "\nchecked 1 scenario: 1 passed, 0 failed\n");
 
     fs::copy_file(path("drive.tick_29.png"), path("drive.tick_5.png"));
     r = check({folder()});
     EXPECT_EQ(r.status, 1);
-    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
                      "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run 'jostle check --update' to remove it)\n"
-                     "checked 1 scenarios: 0 passed, 1 failed\n");
+                     "checked 1 scenario: 0 passed, 1 failed\n");
 
     r = check({"--update", folder()});
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, "updated " + s + ": drive.tick_5.png removed\nchecked 1 scenarios: 1 updated\n");
+    EXPECT_EQ(r.out, "updated " + s + ": drive.tick_5.png removed\nchecked 1 scenario: 1 updated\n");
     std::vector<std::string> expected = users;
     expected.insert(expected.end(), {"drive.scn", "drive.tick_29.png", "drive.trace"});
     std::sort(expected.begin(), expected.end());
@@ -372,7 +372,7 @@ TEST_F(Check, ToleranceAndMaxPixelsLetSmallScreenshotDifferencesPass) {
     EXPECT_EQ(status_with({"--max-pixels", "2"}), 1);
     EXPECT_EQ(status_with({"--tolerance", "4", "--max-pixels", "3"}), 0);
     const RunResult pass = check({s, "--tolerance", "5"});
-    EXPECT_EQ(pass.out, pass_line(s, 30, 1) + "\nchecked 1 scenarios: 1 passed, 0 failed\n");
+    EXPECT_EQ(pass.out, pass_line(s, 30, 1) + "\nchecked 1 scenario: 1 passed, 0 failed\n");
     EXPECT_EQ(pass.err, "");
 }
 
@@ -442,18 +442,18 @@ TEST_F(Check, UpdateCannotFixAFailingExpectation) {
     RunResult r = check({"--update", s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectations, 0 screenshots)\n"
+    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectation, 0 screenshots)\n"
                      "  trace: no golden " + path("e.trace") + " (run 'jostle check --update' to create it)\n"
                      "  " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
                      "updated " + s + ": trace created\n"
-                     "checked 1 scenarios: 1 updated, 1 with failing expectations (an update cannot fix those)\n");
+                     "checked 1 scenario: 1 updated, 1 with failing expectations (an update cannot fix those)\n");
     EXPECT_TRUE(fs::exists(path("e.trace"))) << "the trace is still blessed";
 
     r = check({"--update", s});
     EXPECT_EQ(r.status, 1);
-    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectations, 0 screenshots)\n"
+    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectation, 0 screenshots)\n"
                      "  " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
-                     "checked 1 scenarios: 0 updated, 1 with failing expectations (an update cannot fix those)\n");
+                     "checked 1 scenario: 0 updated, 1 with failing expectations (an update cannot fix those)\n");
 }
 
 // A golden that cannot be read (a merge conflict in the trace, a truncated PNG) fails the
@@ -469,16 +469,16 @@ TEST_F(Check, UnreadableGoldensFailAndAnUpdateReplacesThem) {
     RunResult r = check({s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_THAT(r.out, HasSubstr("FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+    EXPECT_THAT(r.out, HasSubstr("FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
                                  "  trace: the golden cannot be read: " + path("drive.trace") + ":1:"));
     EXPECT_THAT(r.out, HasSubstr("(run 'jostle check --update' to replace it)\n"
                                  "  screenshot tick 29: the golden cannot be read: " + path("drive.tick_29.png")));
-    EXPECT_THAT(r.out, HasSubstr("checked 1 scenarios: 0 passed, 1 failed\n"));
+    EXPECT_THAT(r.out, HasSubstr("checked 1 scenario: 0 passed, 1 failed\n"));
 
     r = check({"--update", s});
     EXPECT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_EQ(r.out, "updated " + s + ": trace replaced (it could not be read), drive.tick_29.png replaced (it could not be read)\n"
-                     "checked 1 scenarios: 1 updated\n");
+                     "checked 1 scenario: 1 updated\n");
     EXPECT_EQ(read_text(path("drive.trace")), trace);
     EXPECT_EQ(read_text(path("drive.tick_29.png")), png);
 }
@@ -510,7 +510,7 @@ TEST_F(Check, ShardsCheckEveryTotalthScenarioAndTouchTheStatusFile) {
                 ++count;
                 EXPECT_TRUE(seen.insert(all[static_cast<std::size_t>(i)]).second);
             }
-            expected += std::string("checked ") + std::to_string(count) + " scenarios: " + std::to_string(count) + " passed, 0 failed\n";
+            expected += std::string("checked ") + std::to_string(count) + (count == 1 ? " scenario: " : " scenarios: ") + std::to_string(count) + " passed, 0 failed\n";
             EXPECT_EQ(r.out, expected);
             EXPECT_TRUE(fs::exists(status));
         }

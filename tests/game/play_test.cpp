@@ -218,6 +218,21 @@ TEST_F(Play, APassingRunPrintsTheSummary) {
     EXPECT_EQ(r.err, "");
 }
 
+// One of a thing is said in the singular: "1 tick, 1/1 expectation passed ... 1 frame rendered".
+TEST_F(Play, TheSummarySaysOneInTheSingular) {
+    const std::string s = scenario("one.scn", "0 up\nat 0 expect var score = 0\nat 1 end\n");
+    const std::string out = path("frames");
+    const RunResult r = play({s, "--out", out, "--size", "64x48"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const std::string prefix = "played " + s + ": 1 tick, 1/1 expectation passed, ";
+    ASSERT_EQ(r.out.rfind(prefix, 0), 0u) << r.out;
+    EXPECT_THAT(r.out.substr(prefix.size()),
+                ::testing::MatchesRegex("[0-9]+\\.[0-9] s \\([0-9]+\\.[0-9] ticks/s\\), 1 frame rendered \\([0-9]+\\.[0-9] frames/s\\)\n"
+                                        "frames: 1 in .*/\n"))
+        << r.out;
+}
+
 TEST_F(Play, AChangedLevelIsANoteNotAnError) {
     const std::string s = scenario("old.scn", kDrive, "0000000000000000");
     RunResult r = play({s});

@@ -315,8 +315,8 @@ std::string describe_check(const ScenarioCheck& c) {
         out << "ERROR " << c.path << ": " << c.error << "\n";
         return out.str();
     }
-    out << (c.passed() ? "PASS " : "FAIL ") << c.path << " (" << c.actual_ticks << " ticks, " << c.expectations
-        << " expectations, " << c.images.size() << " screenshots)\n";
+    out << (c.passed() ? "PASS " : "FAIL ") << c.path << " (" << counted(c.actual_ticks, "tick") << ", "
+        << counted(c.expectations, "expectation") << ", " << counted(static_cast<std::int64_t>(c.images.size()), "screenshot") << ")\n";
     if (!c.trace_error.empty()) {
         out << "  trace: the golden cannot be read: " << c.trace_error << " (run 'jostle check --update' to replace it)\n";
     } else if (c.trace_missing) {
@@ -324,7 +324,7 @@ std::string describe_check(const ScenarioCheck& c) {
     } else if (c.first_divergent_tick) {
         out << "  trace: first divergent tick " << *c.first_divergent_tick;
         if (c.expected_hash != c.actual_hash) out << " (expected hash " << hex16(c.expected_hash) << ", got " << hex16(c.actual_hash) << ")";
-        if (c.expected_ticks != c.actual_ticks) out << " (the golden has " << c.expected_ticks << " ticks, this run " << c.actual_ticks << ")";
+        if (c.expected_ticks != c.actual_ticks) out << " (the golden has " << counted(c.expected_ticks, "tick") << ", this run " << c.actual_ticks << ")";
         out << "\n";
         if (c.dump_tick) {
             out << "  at tick " << *c.dump_tick << " (the first dumped tick from there on), expected -> actual:\n";
@@ -430,7 +430,7 @@ void write_report(const std::string& folder, const std::vector<ScenarioCheck>& c
             " .images{display:flex;gap:8px} figure{margin:0}</style></head><body>\n";
     int failed = 0;
     for (const ScenarioCheck& c : checks) failed += c.passed() ? 0 : 1;
-    html << "<h1>jostle check: " << failed << " of " << checks.size() << " scenarios failed</h1>\n";
+    html << "<h1>jostle check: " << failed << " of " << counted(static_cast<std::int64_t>(checks.size()), "scenario") << " failed</h1>\n";
     std::set<std::string> ids;  // scenarios of the same name from different folders get _2, _3...
     for (const ScenarioCheck& c : checks) {
         if (c.passed()) continue;
