@@ -258,7 +258,7 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                 continue;
             }
             const Expectation& e = *r.expectation;
-            err << scenario_path << ":" << e.line << ": expectation failed at tick " << e.tick << ": expected "
+            err << "jostle play: " << scenario_path << ":" << e.line << ": expectation failed at tick " << e.tick << ": expected "
                 << e.text << ", found " << r.actual << "\n";
         }
         // An output asked for and not written says so, --quiet or not.

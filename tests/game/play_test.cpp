@@ -195,9 +195,10 @@ TEST_F(Play, AFailingExpectationExitsOneSayingWhatWasFound) {
                                    "at 10 end\n");
     const RunResult r = play({s});
     EXPECT_EQ(r.status, 1);
-    EXPECT_EQ(r.err, s + ":11: expectation failed at tick 4: expected player in 0 0 10 10, found player is alive at (112.5, 240)\n" +
-                         s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n" + s +
-                         ":10: expectation failed at tick 9: expected count pickup < 2, found count pickup = 2\n");
+    // Prefixed like every other message of the program, the scenario's file:line after it.
+    EXPECT_EQ(r.err, "jostle play: " + s + ":11: expectation failed at tick 4: expected player in 0 0 10 10, found player is alive at (112.5, 240)\n"
+                     "jostle play: " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
+                     "jostle play: " + s + ":10: expectation failed at tick 9: expected count pickup < 2, found count pickup = 2\n");
     EXPECT_EQ(r.out.rfind("played " + s + ": 10 ticks, 1/4 expectations passed, ", 0), 0u) << r.out;
 }
 

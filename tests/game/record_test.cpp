@@ -561,7 +561,7 @@ TEST_F(Record, AFalseExpectationIsWrittenAndNotedNotRefused) {
 
     const RunResult played = run_play({out, "--quiet"});
     EXPECT_EQ(played.status, 1);
-    EXPECT_EQ(played.err, out + ":10: expectation failed at tick 9: expected var score = 5, found score = 0\n");
+    EXPECT_EQ(played.err, "jostle play: " + out + ":10: expectation failed at tick 9: expected var score = 5, found score = 0\n");
 }
 
 // One tick is "1 tick", in the summary and in --at's limit.
