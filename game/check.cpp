@@ -100,7 +100,10 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             if (i + 1 >= args.size() || args[i + 1].empty()) return usage(err, std::string(a) + " needs a value");
             const std::string_view v = args[++i];
             if (a == "--report") report = std::string(v);
-            if (a == "--assets") assets = std::string(v);
+            if (a == "--assets") {
+                assets = std::string(v);
+                options.update_options = {"--assets", assets};  // for the hints' 'jostle check --update'
+            }
             if (a == "--jobs") {
                 const auto n = parse_whole(v, 1, 256);
                 if (!n) return usage(err, "--jobs: expected a whole number from 1 to 256, got '" + std::string(v) + "'");

@@ -43,6 +43,10 @@ using test::RunResult;
 
 const std::string kAssets = JOSTLE_ASSETS_DIR;
 
+// The command the hints give to re-bless `scenario_path` in a check run with the source tree's
+// assets given, as the fixture's check() gives them.
+std::string update(const std::string& scenario_path) { return "jostle check --update --assets " + kAssets + " " + scenario_path; }
+
 std::vector<std::string> lines_of(const std::string& text) {
     std::vector<std::string> lines;
     std::istringstream in(text);
@@ -272,8 +276,8 @@ TEST_F(Check, AMissingTraceFailsAndAPlainCheckCreatesNothing) {
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
-                     "  trace: no golden " + path("drive.trace") + " (run 'jostle check --update' to create it)\n"
-                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
+                     "  trace: no golden " + path("drive.trace") + " (run '" + update(s) + "' to create it)\n"
+                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run '" + update(s) + "' to create it)\n"
                      "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_EQ(listing(dir_.path()), std::vector<std::string>{"drive.scn"});
 }
@@ -289,6 +293,48 @@ TEST_F(Check, AReportFolderThatCannotBeMadeIsSaidBeforeTheRun) {
     EXPECT_EQ(r.err, "jostle check: " + path("file/report") + ": cannot create the report folder: Not a directory\n");
 }
 
+// The hints give the command that does what they say: this scenario's path as it was given
+// (shell-quoted when it needs it, after '--' when it starts with '-'), and --assets when it was
+// given. Run through the shell, the command creates the goldens.
+TEST_F(Check, TheHintsCommandCreatesTheGoldens) {
+    const fs::path assets = dir_.path() / "my assets";
+    for (const char* part : {"levels", "sprites"}) {
+        fs::create_directories(assets / part);
+        fs::copy(fs::path(kAssets) / part, assets / part, fs::copy_options::recursive);
+    }
+    const fs::path cwd = dir_.path() / "work";
+    fs::create_directories(cwd);
+    scenario("-my \"drive\" $1.scn", kDrive, cwd);
+    const std::string given = "-my \"drive\" $1.scn";
+    const std::string quoted = "\"-my \\\"drive\\\" \\$1.scn\"";
+    const std::string assets_text = (fs::path("..") / "my assets").string();
+    const std::string command = "jostle check --update --assets \"" + assets_text + "\" -- " + quoted;
+
+    RunResult r = test::run_jostle_binary({"check", "--assets", assets_text, "--", given}, "/dev/null", cwd.string());
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "FAIL " + given + " (30 ticks, 0 expectations, 1 screenshot)\n"
+                     "  trace: no golden -my \"drive\" $1.trace (run '" + command + "' to create it)\n"
+                     "  screenshot tick 29: no golden -my \"drive\" $1.tick_29.png (run '" + command + "' to create it)\n"
+                     "checked 1 scenario: 0 passed, 1 failed\n");
+
+    // Without --assets (here $JOSTLE_ASSETS says where they are) the command has none.
+    env_.set("JOSTLE_ASSETS", assets.string());
+    r = test::run_jostle_binary({"check", "--", given}, "/dev/null", cwd.string());
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_THAT(r.out, HasSubstr("(run 'jostle check --update -- " + quoted + "' to create it)\n"));
+    env_.unset("JOSTLE_ASSETS");
+
+    // The hint's command, run by the shell where the check ran, with jostle on the PATH.
+    const std::string jostle_folder = fs::path(JOSTLE_BINARY).parent_path().string();
+    EnvGuard path_guard("PATH", jostle_folder + ":" + (std::getenv("PATH") != nullptr ? std::getenv("PATH") : "/usr/bin:/bin"));
+    r = test::run_program("/bin/sh", {"-c", command}, "/dev/null", cwd.string());
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_EQ(listing(cwd), (std::vector<std::string>{"-my \"drive\" $1.scn", "-my \"drive\" $1.tick_29.png", "-my \"drive\" $1.trace"}));
+    r = test::run_jostle_binary({"check", "--assets", assets_text, "--", given}, "/dev/null", cwd.string());
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+}
+
 TEST_F(Check, AMissingScreenshotGoldenFails) {
     const std::string s = scenario("drive.scn", kDrive);
     bless(s);
@@ -297,7 +343,7 @@ TEST_F(Check, AMissingScreenshotGoldenFails) {
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
-                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
+                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run '" + update(s) + "' to create it)\n"
                      "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_EQ(listing(dir_.path()), (std::vector<std::string>{"drive.scn", "drive.trace"}));
 }
@@ -310,7 +356,7 @@ TEST_F(Check, AStaleScreenshotGoldenFails) {
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
-                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run 'jostle check --update' to remove it)\n"
+                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run '" + update(s) + "' to remove it)\n"
                      "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_TRUE(fs::exists(path("drive.tick_5.png")));  // only an update removes it
 }
@@ -338,7 +384,7 @@ TEST_F(Check, OnlyExactGoldenNamesAreStaleAndUpdateRemovesNothingElse) {
     r = check({folder()});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
-                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run 'jostle check --update' to remove it)\n"
+                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run '" + update(s) + "' to remove it)\n"
                      "checked 1 scenario: 0 passed, 1 failed\n");
 
     r = check({"--update", folder()});
@@ -443,7 +489,7 @@ TEST_F(Check, UpdateCannotFixAFailingExpectation) {
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectation, 0 screenshots)\n"
-                     "  trace: no golden " + path("e.trace") + " (run 'jostle check --update' to create it)\n"
+                     "  trace: no golden " + path("e.trace") + " (run '" + update(s) + "' to create it)\n"
                      "  " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
                      "updated " + s + ": trace created\n"
                      "checked 1 scenario: 1 updated, 1 with failing expectations (an update cannot fix those)\n");
@@ -471,7 +517,7 @@ TEST_F(Check, UnreadableGoldensFailAndAnUpdateReplacesThem) {
     EXPECT_EQ(r.err, "");
     EXPECT_THAT(r.out, HasSubstr("FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
                                  "  trace: the golden cannot be read: " + path("drive.trace") + ":1:"));
-    EXPECT_THAT(r.out, HasSubstr("(run 'jostle check --update' to replace it)\n"
+    EXPECT_THAT(r.out, HasSubstr("(run '" + update(s) + "' to replace it)\n"
                                  "  screenshot tick 29: the golden cannot be read: " + path("drive.tick_29.png")));
     EXPECT_THAT(r.out, HasSubstr("checked 1 scenario: 0 passed, 1 failed\n"));
 

@@ -125,6 +125,28 @@ std::string url_escape(std::string_view text) {
     return out;
 }
 
+// `word` as one word of a shell command: as it is when it holds only characters no shell
+// treats specially, else in double quotes with \, ", $ and ` escaped.
+std::string shell_word(std::string_view word) {
+    const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](char ch) {
+        return std::isalnum(static_cast<unsigned char>(ch)) != 0 || std::string_view("_-./+,:=@%").find(ch) != std::string_view::npos;
+    });
+    if (plain) return std::string(word);
+    std::string out = "\"";
+    for (const char ch : word) {
+        if (ch == '\\' || ch == '"' || ch == '$' || ch == '`') out += '\\';
+        out += ch;
+    }
+    return out + "\"";
+}
+
+std::string update_command_for(const std::string& scenario_path, const CheckOptions& options) {
+    std::string command = "jostle check --update";
+    for (const std::string& option : options.update_options) command += " " + shell_word(option);
+    if (scenario_path.starts_with("-")) command += " --";  // a scenario named -x.scn is not an option
+    return command + " " + shell_word(scenario_path);
+}
+
 }  // namespace
 
 bool ScenarioCheck::passed() const {
@@ -143,6 +165,7 @@ ScenarioCheck check_scenario(const Game& game, const std::string& scenario_path,
     c.path = scenario_path;
     c.name = fs::path(scenario_path).stem().string();
     c.trace_path = (fs::path(scenario_path).parent_path() / (c.name + ".trace")).string();
+    c.update_command = update_command_for(scenario_path, options);
     try {
         const Scenario scenario = load_scenario(scenario_path, game.vocabulary());
         ReplayOptions replay_options;
@@ -311,6 +334,7 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
 
 std::string describe_check(const ScenarioCheck& c) {
     std::ostringstream out;
+    const std::string run = "(run '" + (c.update_command.empty() ? std::string("jostle check --update") : c.update_command) + "' to ";
     if (c.bad_input()) {
         out << "ERROR " << c.path << ": " << c.error << "\n";
         return out.str();
@@ -318,9 +342,9 @@ std::string describe_check(const ScenarioCheck& c) {
     out << (c.passed() ? "PASS " : "FAIL ") << c.path << " (" << counted(c.actual_ticks, "tick") << ", "
         << counted(c.expectations, "expectation") << ", " << counted(static_cast<std::int64_t>(c.images.size()), "screenshot") << ")\n";
     if (!c.trace_error.empty()) {
-        out << "  trace: the golden cannot be read: " << c.trace_error << " (run 'jostle check --update' to replace it)\n";
+        out << "  trace: the golden cannot be read: " << c.trace_error << " " << run << "replace it)\n";
     } else if (c.trace_missing) {
-        out << "  trace: no golden " << c.trace_path << " (run 'jostle check --update' to create it)\n";
+        out << "  trace: no golden " << c.trace_path << " " << run << "create it)\n";
     } else if (c.first_divergent_tick) {
         out << "  trace: first divergent tick " << *c.first_divergent_tick;
         if (c.expected_hash != c.actual_hash) out << " (expected hash " << hex16(c.expected_hash) << ", got " << hex16(c.actual_hash) << ")";
@@ -341,9 +365,9 @@ std::string describe_check(const ScenarioCheck& c) {
     for (const ImageCheck& i : c.images) {
         if (!i.golden_error.empty()) {
             out << "  screenshot tick " << i.tick << ": the golden cannot be read: " << i.golden_error
-                << " (run 'jostle check --update' to replace it)\n";
+                << " " << run << "replace it)\n";
         } else if (i.golden_missing) {
-            out << "  screenshot tick " << i.tick << ": no golden " << i.golden_path << " (run 'jostle check --update' to create it)\n";
+            out << "  screenshot tick " << i.tick << ": no golden " << i.golden_path << " " << run << "create it)\n";
         } else if (!i.compare.within_tolerance) {
             out << "  screenshot tick " << i.tick << ": ";
             if (!i.compare.same_size) {
@@ -355,7 +379,7 @@ std::string describe_check(const ScenarioCheck& c) {
         }
     }
     for (const std::string& stale : c.stale_goldens) {
-        out << "  stale golden " << stale << ": no screenshot asks for it (run 'jostle check --update' to remove it)\n";
+        out << "  stale golden " << stale << ": no screenshot asks for it " << run << "remove it)\n";
     }
     return out.str();
 }

@@ -30,6 +30,9 @@ struct CheckOptions {
     CompareOptions image_tolerance;  // exact by default
     int dump_every = 10;             // for goldens written by an update
     RenderBackend backend = RenderBackend::osmesa;
+    // The options the hints' 'jostle check --update SCENARIO' needs to find what this check
+    // found, such as {"--assets", DIR} when the assets were given on the command line.
+    std::vector<std::string> update_options;
 };
 
 // A field that differs between the golden and this run at one dumped tick.
@@ -80,6 +83,9 @@ struct ScenarioCheck {
     double seconds = 0.0;
 
     std::string new_trace;  // this run's trace, for an update
+    // The command that re-blesses this scenario, as the hints give it (shell-quoted where a
+    // word needs it): "jostle check --update --assets my_assets 'wall #2.scn'".
+    std::string update_command;
 
     bool bad_input() const { return !error.empty(); }
     bool trace_passed() const { return !trace_missing && !first_divergent_tick && expected_ticks == actual_ticks; }
