@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstdlib>
 #include <csignal>
+#include <filesystem>
 #include <mutex>
 #include <optional>
 #include <ostream>
@@ -14,9 +15,11 @@
 #include "arena.h"
 #include "jostle/core/error.h"
 #include "jostle/core/interrupt.h"
+#include "jostle/core/text.h"
 #include "jostle/replay/check.h"
 
 namespace jostle {
+namespace fs = std::filesystem;
 namespace {
 
 int usage(std::ostream& err, const std::string& message) {
@@ -49,7 +52,8 @@ options:
                     interrupted update changes nothing. Missing goldens are created only so.
   --report DIR      write DIR/report.html (each failing scenario with its expected, actual
                     and diff images side by side) and DIR/junit.xml (every scenario); not
-                    the assets' levels or sprites folder (the images would be sprites)
+                    a folder of the scenarios checked (it would mix with goldens) nor the
+                    assets' levels or sprites folder (the images would be sprites)
   --jobs N          check N scenarios at once, 1 to 256 (default 1)
   --tolerance N     per-channel difference (0..255) that still counts as equal in images
   --max-pixels N    how many pixels may differ in each image (0..9223372036854775807; default 0)
@@ -97,7 +101,10 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             if (i + 1 >= args.size() || args[i + 1].empty()) return usage(err, std::string(a) + " needs a value");
             const std::string_view v = args[++i];
             if (a == "--report") report = std::string(v);
-            if (a == "--assets") assets = std::string(v);
+            if (a == "--assets") {
+                assets = std::string(v);
+                options.update_options = {"--assets", assets};  // for the hints' 'jostle check --update'
+            }
             if (a == "--jobs") {
                 const auto n = parse_whole(v, 1, 256);
                 if (!n) return usage(err, "--jobs: expected a whole number from 1 to 256, got '" + std::string(v) + "'");
@@ -132,7 +139,20 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
         if (const std::string folder = report.empty() ? "" : game.asset_folder(report); !folder.empty()) {
             return usage(err, "--report: '" + report + "' " + folder + "; give another folder");
         }
-        const std::vector<std::string> scenarios = select_shard(collect_scenarios(paths));
+        const std::vector<std::string> all_scenarios = collect_scenarios(paths);
+        if (!report.empty()) {
+            // The report's images and pages among goldens would be mistaken for them, or
+            // committed with them: a scenario's folder is not a report folder.
+            for (const std::string& scenario : all_scenarios) {
+                const fs::path folder = fs::path(scenario).parent_path().empty() ? fs::path(".") : fs::path(scenario).parent_path();
+                std::error_code ec;
+                if (fs::equivalent(report, folder, ec)) {
+                    return usage(err, "--report: '" + report + "' holds the scenario '" + scenario +
+                                          "' and its goldens; give the report a folder of its own");
+                }
+            }
+        }
+        const std::vector<std::string> scenarios = select_shard(all_scenarios);
         if (!report.empty()) create_report_folder(report);  // a bad --report is said before the run
         std::vector<ScenarioCheck> checks(scenarios.size());
         std::atomic<std::size_t> next{0};
@@ -185,7 +205,7 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             for (const std::string& line : lines) out << line << "\n";
             std::size_t expectations_failed = 0;
             for (const ScenarioCheck& c : checks) expectations_failed += c.failed_expectations.empty() ? 0 : 1;
-            out << "checked " << checks.size() << " scenarios: " << lines.size() << " updated";
+            out << "checked " << counted(static_cast<std::int64_t>(checks.size()), "scenario") << ": " << lines.size() << " updated";
             if (expectations_failed > 0) {
                 out << ", " << expectations_failed << " with failing expectations (an update cannot fix those)";
             }
@@ -194,7 +214,7 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             return expectations_failed > 0 ? 1 : 0;
         }
         if (!report.empty()) write_report(report, checks);
-        out << "checked " << checks.size() << " scenarios: " << checks.size() - static_cast<std::size_t>(failed + bad)
+        out << "checked " << counted(static_cast<std::int64_t>(checks.size()), "scenario") << ": " << checks.size() - static_cast<std::size_t>(failed + bad)
             << " passed, " << failed << " failed" << (bad > 0 ? ", " + std::to_string(bad) + " with bad input" : "") << "\n";
         if (update && bad > 0) err << "jostle check: nothing updated: fix the bad input first\n";
         return bad > 0 ? 2 : failed > 0 ? 1 : 0;

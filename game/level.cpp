@@ -5,6 +5,8 @@
 #include <cmath>
 #include <optional>
 #include <set>
+#include <string_view>
+#include <utility>
 
 #include "jostle/core/error.h"
 #include "jostle/core/text.h"
@@ -71,6 +73,20 @@ private:
     const std::vector<Word>& words_;
 };
 
+// The game's own names for what it spawns, bullet_N and ball_N (arena.cpp): "bullet_" or
+// "ball_" and digits. A thing named so would share its name with a bullet or a ball in the
+// dumps and in expectations. Returns what the game names so, or nullptr.
+const char* reserved_for(std::string_view name) {
+    for (const auto& [prefix, what] : {std::pair<std::string_view, const char*>{"bullet_", "its bullets bullet_N"},
+                                       std::pair<std::string_view, const char*>{"ball_", "its cannon balls ball_N"}}) {
+        if (name.size() > prefix.size() && name.starts_with(prefix) &&
+            name.find_first_not_of("0123456789", prefix.size()) == std::string_view::npos) {
+            return what;
+        }
+    }
+    return nullptr;
+}
+
 }  // namespace
 
 Level parse_level(std::string_view text, const std::string& source, const std::string& name) {
@@ -129,6 +145,9 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             thing.name = std::string(r.word(1).text);
             if (thing.name == "player" || thing.name == "game" || !names.insert(thing.name).second) {
                 r.fail(r.word(1).column, "the name '" + thing.name + "' is already taken");
+            }
+            if (const char* what = reserved_for(thing.name)) {
+                r.fail(r.word(1).column, "the name '" + thing.name + "' is reserved: the game names " + what);
             }
         };
         if (head == "wall") {

@@ -17,8 +17,10 @@
 //   blob b1 100 400 300 400 40              NAME x0 y0 x1 y1 speed: the blob creature
 //                                           (pixel-perfect) patrolling between two points
 //
-// '#' starts a comment; blank lines are ignored. Names are unique. Errors name the file, the
-// line and what was expected. A UTF-8 byte order mark and CRLF line ends are accepted.
+// '#' starts a comment; blank lines are ignored. Names are unique, and neither 'player', 'game'
+// nor the game's names for what it fires (bullet_N, ball_N: 'bullet_' or 'ball_' and digits).
+// Errors name the file, the line and what was expected. A UTF-8 byte order mark and CRLF line
+// ends are accepted.
 // Limits: every coordinate, length and speed within +-1e5 (kMaxCoordinate), angles within
 // +-1e6, mass <= 1000; at most kMaxLevelThings things; polygons of 3 to 16 vertices; lines
 // and words as in jostle/core/text.h (kMaxLineBytes, kMaxWordBytes). A number finer than a

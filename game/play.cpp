@@ -20,6 +20,7 @@
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/core/interrupt.h"
+#include "jostle/core/text.h"
 #include "jostle/render/renderer.h"
 #include "jostle/replay/replay.h"
 
@@ -264,7 +265,7 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                 continue;
             }
             const Expectation& e = *r.expectation;
-            err << scenario_path << ":" << e.line << ": expectation failed at tick " << e.tick << ": expected "
+            err << "jostle play: " << scenario_path << ":" << e.line << ": expectation failed at tick " << e.tick << ": expected "
                 << e.text << ", found " << r.actual << "\n";
         }
         // An output asked for and not written says so, --quiet or not.
@@ -278,11 +279,11 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             }
         }
         if (!quiet) {
-            out << "played " << scenario_path << ": " << result.ticks << " ticks, " << passed << "/"
-                << result.expectations.size() << " expectations passed, " << ratio_text(result.seconds) << " s ("
+            out << "played " << scenario_path << ": " << counted(result.ticks, "tick") << ", " << passed << "/"
+                << counted(static_cast<std::int64_t>(result.expectations.size()), "expectation") << " passed, " << ratio_text(result.seconds) << " s ("
                 << ratio_text(static_cast<double>(result.ticks) / std::max(result.seconds, 1e-9)) << " ticks/s)";
             if (result.frames_rendered > 0) {
-                out << ", " << result.frames_rendered << " frames rendered ("
+                out << ", " << counted(result.frames_rendered, "frame") << " rendered ("
                     << ratio_text(static_cast<double>(result.frames_rendered) / std::max(result.seconds, 1e-9))
                     << " frames/s)";
             }

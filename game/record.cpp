@@ -165,7 +165,7 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
             from = load_scenario(from_path, game.vocabulary());
             if (*at > from->ticks()) {
                 return usage(err, "--at " + std::to_string(*at) + ": " + from_path + " has only " +
-                                      std::to_string(from->ticks()) + " ticks");
+                                      counted(from->ticks(), "tick"));
             }
             desc.from = &*from;
             desc.keep_ticks = *at;
@@ -236,7 +236,8 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         // the file unreadable): the summary goes to stderr. A target written in place was not
         // read back, and the summary says so.
         std::ostream& summary = same_file(out_path, "/dev/stdout") ? err : out;
-        summary << "recorded " << recording.hashes.size() << " ticks of level " << recording.scenario.level << " to " << out_path
+        summary << "recorded " << counted(static_cast<std::int64_t>(recording.hashes.size()), "tick") << " of level "
+                << recording.scenario.level << " to " << out_path
                 << (file.in_place() ? " (not read back, as it is not a regular file: the bytes sent were replayed first, the "
                                       "same state on every tick)\n"
                                     : " (read back and replayed: the same state on every tick)\n");

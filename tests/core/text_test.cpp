@@ -121,5 +121,13 @@ TEST(Hex16, SixteenLowercaseDigitsZeroPadded) {
     EXPECT_EQ(hex16(255), "00000000000000ff");
 }
 
+TEST(Counted, PluralButForOne) {
+    EXPECT_EQ(counted(1, "scenario"), "1 scenario");
+    EXPECT_EQ(counted(0, "scenario"), "0 scenarios");
+    EXPECT_EQ(counted(2, "tick"), "2 ticks");
+    EXPECT_EQ(counted(-1, "tick"), "-1 ticks");
+    EXPECT_EQ(counted(2280, "frame"), "2280 frames");
+}
+
 }  // namespace
 }  // namespace jostle

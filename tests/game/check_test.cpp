@@ -43,6 +43,10 @@ using test::RunResult;
 
 const std::string kAssets = JOSTLE_ASSETS_DIR;
 
+// The command the hints give to re-bless `scenario_path` in a check run with the source tree's
+// assets given, as the fixture's check() gives them.
+std::string update(const std::string& scenario_path) { return "jostle check --update --assets " + kAssets + " " + scenario_path; }
+
 std::vector<std::string> lines_of(const std::string& text) {
     std::vector<std::string> lines;
     std::istringstream in(text);
@@ -138,7 +142,7 @@ protected:
 
     std::string pass_line(const std::string& scenario_path, int ticks, int screenshots) const {
         return "PASS " + scenario_path + " (" + std::to_string(ticks) + " ticks, 0 expectations, " + std::to_string(screenshots) +
-               " screenshots)";
+               (screenshots == 1 ? " screenshot)" : " screenshots)");
     }
 
     const test::TempFolder dir_{"check"};
@@ -211,7 +215,7 @@ TEST_F(Check, ARuleChangeIsCaughtAtTheFirstTickItCanMatter) {
     EXPECT_TRUE(c.failed_expectations.empty());
 
     EXPECT_EQ(describe_check(c),
-              "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+              "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
               "  trace: first divergent tick 10 (expected hash " + hex16(golden.hashes[10]) + ", got " + hex16(run.hashes[10]) + ")\n"
               "  at tick 10 (the first dumped tick from there on), expected -> actual:\n"
               "    player x: 102.5 -> " + c.changes[0].actual + "\n"
@@ -271,10 +275,10 @@ TEST_F(Check, AMissingTraceFailsAndAPlainCheckCreatesNothing) {
     const RunResult r = check({s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
-                     "  trace: no golden " + path("drive.trace") + " (run 'jostle check --update' to create it)\n"
-                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
-                     "checked 1 scenarios: 0 passed, 1 failed\n");
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
+                     "  trace: no golden " + path("drive.trace") + " (run '" + update(s) + "' to create it)\n"
+                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run '" + update(s) + "' to create it)\n"
+                     "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_EQ(listing(dir_.path()), std::vector<std::string>{"drive.scn"});
 }
 
@@ -308,6 +312,48 @@ TEST_F(Check, AReportFolderThatIsTheAssetsSpritesFolderIsRefused) {
     EXPECT_EQ(listing(assets / "sprites"), sprites);
 }
 
+// The hints give the command that does what they say: this scenario's path as it was given
+// (shell-quoted when it needs it, after '--' when it starts with '-'), and --assets when it was
+// given. Run through the shell, the command creates the goldens.
+TEST_F(Check, TheHintsCommandCreatesTheGoldens) {
+    const fs::path assets = dir_.path() / "my assets";
+    for (const char* part : {"levels", "sprites"}) {
+        fs::create_directories(assets / part);
+        fs::copy(fs::path(kAssets) / part, assets / part, fs::copy_options::recursive);
+    }
+    const fs::path cwd = dir_.path() / "work";
+    fs::create_directories(cwd);
+    scenario("-my \"drive\" $1.scn", kDrive, cwd);
+    const std::string given = "-my \"drive\" $1.scn";
+    const std::string quoted = "\"-my \\\"drive\\\" \\$1.scn\"";
+    const std::string assets_text = (fs::path("..") / "my assets").string();
+    const std::string command = "jostle check --update --assets \"" + assets_text + "\" -- " + quoted;
+
+    RunResult r = test::run_jostle_binary({"check", "--assets", assets_text, "--", given}, "/dev/null", cwd.string());
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "FAIL " + given + " (30 ticks, 0 expectations, 1 screenshot)\n"
+                     "  trace: no golden -my \"drive\" $1.trace (run '" + command + "' to create it)\n"
+                     "  screenshot tick 29: no golden -my \"drive\" $1.tick_29.png (run '" + command + "' to create it)\n"
+                     "checked 1 scenario: 0 passed, 1 failed\n");
+
+    // Without --assets (here $JOSTLE_ASSETS says where they are) the command has none.
+    env_.set("JOSTLE_ASSETS", assets.string());
+    r = test::run_jostle_binary({"check", "--", given}, "/dev/null", cwd.string());
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_THAT(r.out, HasSubstr("(run 'jostle check --update -- " + quoted + "' to create it)\n"));
+    env_.unset("JOSTLE_ASSETS");
+
+    // The hint's command, run by the shell where the check ran, with jostle on the PATH.
+    const std::string jostle_folder = fs::path(JOSTLE_BINARY).parent_path().string();
+    EnvGuard path_guard("PATH", jostle_folder + ":" + (std::getenv("PATH") != nullptr ? std::getenv("PATH") : "/usr/bin:/bin"));
+    r = test::run_program("/bin/sh", {"-c", command}, "/dev/null", cwd.string());
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_EQ(listing(cwd), (std::vector<std::string>{"-my \"drive\" $1.scn", "-my \"drive\" $1.tick_29.png", "-my \"drive\" $1.trace"}));
+    r = test::run_jostle_binary({"check", "--assets", assets_text, "--", given}, "/dev/null", cwd.string());
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+}
+
 TEST_F(Check, AMissingScreenshotGoldenFails) {
     const std::string s = scenario("drive.scn", kDrive);
     bless(s);
@@ -315,9 +361,9 @@ TEST_F(Check, AMissingScreenshotGoldenFails) {
     const RunResult r = check({s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
-                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run 'jostle check --update' to create it)\n"
-                     "checked 1 scenarios: 0 passed, 1 failed\n");
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
+                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run '" + update(s) + "' to create it)\n"
+                     "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_EQ(listing(dir_.path()), (std::vector<std::string>{"drive.scn", "drive.trace"}));
 }
 
@@ -328,10 +374,46 @@ TEST_F(Check, AStaleScreenshotGoldenFails) {
     const RunResult r = check({s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
-                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run 'jostle check --update' to remove it)\n"
-                     "checked 1 scenarios: 0 passed, 1 failed\n");
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
+                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run '" + update(s) + "' to remove it)\n"
+                     "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_TRUE(fs::exists(path("drive.tick_5.png")));  // only an update removes it
+}
+
+// A golden is exactly NAME.tick_T.png with T a tick as the program writes it. Files that only
+// start like one (a user's backup, a report's images, a zero-padded or signed tick, a tick
+// past the limit) are the user's: never stale, never removed. A real stale golden among them
+// is still found, and only it is removed.
+TEST_F(Check, OnlyExactGoldenNamesAreStaleAndUpdateRemovesNothingElse) {
+    const std::string s = scenario("drive.scn", kDrive);
+    bless(s);
+    const std::vector<std::string> users = {
+        "drive.tick_29.orig.png", "drive.tick_before-fix.png", "drive.tick_29.actual.png", "drive.tick_29.diff.png",
+        "drive.tick_29.expected.png", "drive.tick_029.png", "drive.tick_+5.png", "drive.tick_-5.png", "drive.tick_.png",
+        "drive.tick_5 .png", "drive.tick_16777216.png", "drive.tick_99999999999999999999.png", "drive.tick_5.PNG",
+        "drive.tick_5.png.bak", "drivex.tick_5.png"};
+    for (const std::string& name : users) fs::copy_file(path("drive.tick_29.png"), path(name));
+
+    RunResult r = check({folder()});
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, pass_line(s, 30, 1) + "\nchecked 1 scenario: 1 passed, 0 failed\n");
+
+    fs::copy_file(path("drive.tick_29.png"), path("drive.tick_5.png"));
+    r = check({folder()});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
+                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run '" + update(s) + "' to remove it)\n"
+                     "checked 1 scenario: 0 passed, 1 failed\n");
+
+    r = check({"--update", folder()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "updated " + s + ": drive.tick_5.png removed\nchecked 1 scenario: 1 updated\n");
+    std::vector<std::string> expected = users;
+    expected.insert(expected.end(), {"drive.scn", "drive.tick_29.png", "drive.trace"});
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(listing(dir_.path()), expected);
 }
 
 TEST_F(Check, ToleranceAndMaxPixelsLetSmallScreenshotDifferencesPass) {
@@ -355,7 +437,7 @@ TEST_F(Check, ToleranceAndMaxPixelsLetSmallScreenshotDifferencesPass) {
     EXPECT_EQ(status_with({"--max-pixels", "2"}), 1);
     EXPECT_EQ(status_with({"--tolerance", "4", "--max-pixels", "3"}), 0);
     const RunResult pass = check({s, "--tolerance", "5"});
-    EXPECT_EQ(pass.out, pass_line(s, 30, 1) + "\nchecked 1 scenarios: 1 passed, 0 failed\n");
+    EXPECT_EQ(pass.out, pass_line(s, 30, 1) + "\nchecked 1 scenario: 1 passed, 0 failed\n");
     EXPECT_EQ(pass.err, "");
 }
 
@@ -425,18 +507,18 @@ TEST_F(Check, UpdateCannotFixAFailingExpectation) {
     RunResult r = check({"--update", s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectations, 0 screenshots)\n"
-                     "  trace: no golden " + path("e.trace") + " (run 'jostle check --update' to create it)\n"
+    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectation, 0 screenshots)\n"
+                     "  trace: no golden " + path("e.trace") + " (run '" + update(s) + "' to create it)\n"
                      "  " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
                      "updated " + s + ": trace created\n"
-                     "checked 1 scenarios: 1 updated, 1 with failing expectations (an update cannot fix those)\n");
+                     "checked 1 scenario: 1 updated, 1 with failing expectations (an update cannot fix those)\n");
     EXPECT_TRUE(fs::exists(path("e.trace"))) << "the trace is still blessed";
 
     r = check({"--update", s});
     EXPECT_EQ(r.status, 1);
-    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectations, 0 screenshots)\n"
+    EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectation, 0 screenshots)\n"
                      "  " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
-                     "checked 1 scenarios: 0 updated, 1 with failing expectations (an update cannot fix those)\n");
+                     "checked 1 scenario: 0 updated, 1 with failing expectations (an update cannot fix those)\n");
 }
 
 // A golden that cannot be read (a merge conflict in the trace, a truncated PNG) fails the
@@ -452,16 +534,16 @@ TEST_F(Check, UnreadableGoldensFailAndAnUpdateReplacesThem) {
     RunResult r = check({s});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
-    EXPECT_THAT(r.out, HasSubstr("FAIL " + s + " (30 ticks, 0 expectations, 1 screenshots)\n"
+    EXPECT_THAT(r.out, HasSubstr("FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
                                  "  trace: the golden cannot be read: " + path("drive.trace") + ":1:"));
-    EXPECT_THAT(r.out, HasSubstr("(run 'jostle check --update' to replace it)\n"
+    EXPECT_THAT(r.out, HasSubstr("(run '" + update(s) + "' to replace it)\n"
                                  "  screenshot tick 29: the golden cannot be read: " + path("drive.tick_29.png")));
-    EXPECT_THAT(r.out, HasSubstr("checked 1 scenarios: 0 passed, 1 failed\n"));
+    EXPECT_THAT(r.out, HasSubstr("checked 1 scenario: 0 passed, 1 failed\n"));
 
     r = check({"--update", s});
     EXPECT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_EQ(r.out, "updated " + s + ": trace replaced (it could not be read), drive.tick_29.png replaced (it could not be read)\n"
-                     "checked 1 scenarios: 1 updated\n");
+                     "checked 1 scenario: 1 updated\n");
     EXPECT_EQ(read_text(path("drive.trace")), trace);
     EXPECT_EQ(read_text(path("drive.tick_29.png")), png);
 }
@@ -493,7 +575,7 @@ TEST_F(Check, ShardsCheckEveryTotalthScenarioAndTouchTheStatusFile) {
                 ++count;
                 EXPECT_TRUE(seen.insert(all[static_cast<std::size_t>(i)]).second);
             }
-            expected += std::string("checked ") + std::to_string(count) + " scenarios: " + std::to_string(count) + " passed, 0 failed\n";
+            expected += std::string("checked ") + std::to_string(count) + (count == 1 ? " scenario: " : " scenarios: ") + std::to_string(count) + " passed, 0 failed\n";
             EXPECT_EQ(r.out, expected);
             EXPECT_TRUE(fs::exists(status));
         }
@@ -683,6 +765,48 @@ TEST_F(Check, UsageErrorsExitTwoWithTheirMessage) {
 }
 
 // ---- --report --------------------------------------------------------------------------
+
+// A report into a folder of the scenarios checked would mix its images and pages with the
+// goldens (and be committed with them): a usage error before anything runs, however the
+// folder is written. A folder below it, or another scenario's folder, is fine.
+TEST_F(Check, AReportIntoAScenarioFolderIsRefusedBeforeTheRun) {
+    const fs::path other = dir_.path() / "other";
+    fs::create_directories(other);
+    const std::string s = scenario("drive.scn", kDrive);
+    const std::string t = scenario("turn.scn", kTurn, other);
+    bless(s);
+    bless(t);
+    const auto before = snapshot(dir_.path());
+    const auto before_other = snapshot(other);
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{s, "--report", folder()}, folder()},
+        {{s, "--update", "--report", folder() + "/."}, folder() + "/."},
+        {{t, folder(), "--report", (other / ".." / "other").string()}, (other / ".." / "other").string()},
+    };
+    for (const auto& [args, report] : cases) {
+        SCOPED_TRACE(report);
+        const std::string first = args[0] == t ? t : s;
+        const RunResult r = check(args);
+        EXPECT_EQ(r.status, 2);
+        EXPECT_EQ(r.out, "");
+        EXPECT_EQ(r.err, usage_error("--report: '" + report + "' holds the scenario '" + first +
+                                     "' and its goldens; give the report a folder of its own"));
+        EXPECT_TRUE(snapshot(dir_.path()) == before);
+        EXPECT_TRUE(snapshot(other) == before_other);
+    }
+    // Relative to the working folder, as typed.
+    const RunResult r = test::run_jostle_binary({"check", "--assets", kAssets, "drive.scn", "--report", "."}, "/dev/null", folder());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, usage_error("--report: '.' holds the scenario 'drive.scn' and its goldens; give the report a folder of its own"));
+    EXPECT_TRUE(snapshot(dir_.path()) == before);
+
+    // Another scenario's folder, or one below this one's, holds no golden of the scenarios checked.
+    const RunResult below = check({s, "--report", (dir_.path() / "report").string()});
+    EXPECT_EQ(below.status, 0) << below.out << below.err;
+    const RunResult elsewhere = check({s, "--report", other.string()});
+    EXPECT_EQ(elsewhere.status, 0) << elsewhere.out << elsewhere.err;
+    EXPECT_TRUE(fs::exists(other / "report.html"));
+}
 
 // The elements <img class="C" src="S"> of an HTML text, as (C, S).
 std::vector<std::pair<std::string, std::string>> images_in(const std::string& html) {

@@ -211,6 +211,20 @@ TEST(LevelErrors, DuplicateAndReservedNames) {
     EXPECT_EQ(error_of(kHead + "rock r circle 1 1 1\nrock r poly 0 0 0 0 1 0 0 1\n"), "l.level:5:6: the name 'r' is already taken");
     EXPECT_EQ(error_of_line("crate player 1 2 3 4 0"), "l.level:4:7: the name 'player' is already taken");
     EXPECT_EQ(error_of_line("cannon game 1 2 0 10 100"), "l.level:4:8: the name 'game' is already taken");
+    // The game's names for the bullets and balls it fires (bullet_N, ball_N): a thing named so
+    // would be dumped beside the bullet of that name, and `expect bullet_1 gone` would find it.
+    EXPECT_EQ(error_of_line("rock bullet_1 circle 200 240 10"),
+              "l.level:4:6: the name 'bullet_1' is reserved: the game names its bullets bullet_N");
+    EXPECT_EQ(error_of_line("cannon ball_12 1 2 0 10 100"),
+              "l.level:4:8: the name 'ball_12' is reserved: the game names its cannon balls ball_N");
+    EXPECT_EQ(error_of_line("wall  bullet_0 0 0 10 10"),  // never fired, but the game's all the same
+              "l.level:4:7: the name 'bullet_0' is reserved: the game names its bullets bullet_N");
+    EXPECT_EQ(error_of_line("pickup ball_007 5 5 2"), "l.level:4:8: the name 'ball_007' is reserved: the game names its cannon balls ball_N");
+    // Only "bullet_" or "ball_" and digits: anything else is the level's to use.
+    for (const char* name : {"bullet", "bullet_", "ball_", "bullet_x", "ball_1a", "bullets_1", "Bullet_1", "my_ball_1", "bullet_1_spare",
+                             "ball_-1", "ball_+1", "ball"}) {
+        EXPECT_EQ(error_of_line(std::string("pickup ") + name + " 5 5 2"), "no error") << name;
+    }
 }
 
 TEST(LevelErrors, PolygonRocks) {

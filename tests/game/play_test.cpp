@@ -195,9 +195,10 @@ TEST_F(Play, AFailingExpectationExitsOneSayingWhatWasFound) {
                                    "at 10 end\n");
     const RunResult r = play({s});
     EXPECT_EQ(r.status, 1);
-    EXPECT_EQ(r.err, s + ":11: expectation failed at tick 4: expected player in 0 0 10 10, found player is alive at (112.5, 240)\n" +
-                         s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n" + s +
-                         ":10: expectation failed at tick 9: expected count pickup < 2, found count pickup = 2\n");
+    // Prefixed like every other message of the program, the scenario's file:line after it.
+    EXPECT_EQ(r.err, "jostle play: " + s + ":11: expectation failed at tick 4: expected player in 0 0 10 10, found player is alive at (112.5, 240)\n"
+                     "jostle play: " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
+                     "jostle play: " + s + ":10: expectation failed at tick 9: expected count pickup < 2, found count pickup = 2\n");
     EXPECT_EQ(r.out.rfind("played " + s + ": 10 ticks, 1/4 expectations passed, ", 0), 0u) << r.out;
 }
 
@@ -216,6 +217,21 @@ TEST_F(Play, APassingRunPrintsTheSummary) {
     EXPECT_EQ(r.status, 0);
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(r.err, "");
+}
+
+// One of a thing is said in the singular: "1 tick, 1/1 expectation passed ... 1 frame rendered".
+TEST_F(Play, TheSummarySaysOneInTheSingular) {
+    const std::string s = scenario("one.scn", "0 up\nat 0 expect var score = 0\nat 1 end\n");
+    const std::string out = path("frames");
+    const RunResult r = play({s, "--out", out, "--size", "64x48"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const std::string prefix = "played " + s + ": 1 tick, 1/1 expectation passed, ";
+    ASSERT_EQ(r.out.rfind(prefix, 0), 0u) << r.out;
+    EXPECT_THAT(r.out.substr(prefix.size()),
+                ::testing::MatchesRegex("[0-9]+\\.[0-9] s \\([0-9]+\\.[0-9] ticks/s\\), 1 frame rendered \\([0-9]+\\.[0-9] frames/s\\)\n"
+                                        "frames: 1 in .*/\n"))
+        << r.out;
 }
 
 TEST_F(Play, AChangedLevelIsANoteNotAnError) {

@@ -561,7 +561,20 @@ TEST_F(Record, AFalseExpectationIsWrittenAndNotedNotRefused) {
 
     const RunResult played = run_play({out, "--quiet"});
     EXPECT_EQ(played.status, 1);
-    EXPECT_EQ(played.err, out + ":10: expectation failed at tick 9: expected var score = 5, found score = 0\n");
+    EXPECT_EQ(played.err, "jostle play: " + out + ":10: expectation failed at tick 9: expected var score = 5, found score = 0\n");
+}
+
+// One tick is "1 tick", in the summary and in --at's limit.
+TEST_F(Record, OneTickIsSaidInTheSingular) {
+    const std::string script = write("one.script", "hold up 1\n");
+    const std::string out = path("one.scn");
+    const RunResult r = run_record({"--level", "arena", "-o", out}, script);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "recorded 1 tick of level arena to " + out + " (read back and replayed: the same state on every tick)\n");
+    const RunResult at = run_record({"--from", out, "--at", "2", "-o", path("two.scn")}, script);
+    EXPECT_EQ(at.status, 2);
+    EXPECT_EQ(at.err, "jostle record: --at 2: " + out + " has only 1 tick\nRun 'jostle record --help' for usage.\n");
 }
 
 TEST_F(Record, AnExpectationNamingWhatTheGameLacksIsBadInput) {

@@ -185,4 +185,8 @@ std::string hex16(std::uint64_t v) {
     return out;
 }
 
+std::string counted(std::int64_t n, std::string_view noun) {
+    return std::to_string(n) + " " + std::string(noun) + (n == 1 ? "" : "s");
+}
+
 }  // namespace jostle

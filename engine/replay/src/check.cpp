@@ -14,6 +14,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
@@ -21,6 +22,7 @@
 #include "jostle/core/text.h"
 #include "jostle/render/png_io.h"
 #include "jostle/replay/replay.h"
+#include "jostle/replay/scenario.h"
 
 namespace jostle {
 namespace fs = std::filesystem;
@@ -29,6 +31,23 @@ namespace {
 std::string golden_image_path(const std::string& scenario_path, std::int64_t tick) {
     const fs::path p(scenario_path);
     return (p.parent_path() / (p.stem().string() + ".tick_" + std::to_string(tick) + ".png")).string();
+}
+
+// Whether `file` is a name golden_image_path gives scenario `name`: exactly NAME.tick_T.png
+// with T a tick as std::to_string writes it (no sign, no leading zero, below the tick limit).
+// Anything else beside the goldens (pickup.tick_79.orig.png, a report's
+// pickup.tick_80.actual.png) is the user's, never a stale golden.
+bool is_golden_image_name(std::string_view file, std::string_view name) {
+    const std::string_view prefix = ".tick_", suffix = ".png";
+    if (file.size() < name.size() + prefix.size() + suffix.size() || !file.starts_with(name) ||
+        file.substr(name.size()).substr(0, prefix.size()) != prefix || !file.ends_with(suffix)) {
+        return false;
+    }
+    const std::string_view digits = file.substr(name.size() + prefix.size(), file.size() - name.size() - prefix.size() - suffix.size());
+    std::int64_t tick = -1;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), tick);
+    return ec == std::errc{} && end == digits.data() + digits.size() && tick >= 0 && tick < kMaxScenarioTicks &&
+           std::to_string(tick) == digits;
 }
 
 // The entities and fields that differ between two dumps of the same tick.
@@ -106,6 +125,28 @@ std::string url_escape(std::string_view text) {
     return out;
 }
 
+// `word` as one word of a shell command: as it is when it holds only characters no shell
+// treats specially, else in double quotes with \, ", $ and ` escaped.
+std::string shell_word(std::string_view word) {
+    const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](char ch) {
+        return std::isalnum(static_cast<unsigned char>(ch)) != 0 || std::string_view("_-./+,:=@%").find(ch) != std::string_view::npos;
+    });
+    if (plain) return std::string(word);
+    std::string out = "\"";
+    for (const char ch : word) {
+        if (ch == '\\' || ch == '"' || ch == '$' || ch == '`') out += '\\';
+        out += ch;
+    }
+    return out + "\"";
+}
+
+std::string update_command_for(const std::string& scenario_path, const CheckOptions& options) {
+    std::string command = "jostle check --update";
+    for (const std::string& option : options.update_options) command += " " + shell_word(option);
+    if (scenario_path.starts_with("-")) command += " --";  // a scenario named -x.scn is not an option
+    return command + " " + shell_word(scenario_path);
+}
+
 }  // namespace
 
 bool ScenarioCheck::passed() const {
@@ -124,6 +165,7 @@ ScenarioCheck check_scenario(const Game& game, const std::string& scenario_path,
     c.path = scenario_path;
     c.name = fs::path(scenario_path).stem().string();
     c.trace_path = (fs::path(scenario_path).parent_path() / (c.name + ".trace")).string();
+    c.update_command = update_command_for(scenario_path, options);
     try {
         const Scenario scenario = load_scenario(scenario_path, game.vocabulary());
         ReplayOptions replay_options;
@@ -213,12 +255,10 @@ ScenarioCheck check_scenario(const Game& game, const std::string& scenario_path,
             c.images.push_back(std::move(check));
         }
         const fs::path folder = fs::path(scenario_path).parent_path().empty() ? fs::path(".") : fs::path(scenario_path).parent_path();
-        const std::string prefix = c.name + ".tick_";
         std::error_code ec;
         for (const auto& entry : fs::directory_iterator(folder, ec)) {
             const std::string file = entry.path().filename().string();
-            if (file.rfind(prefix, 0) == 0 && entry.path().extension() == ".png" &&
-                !wanted.count((fs::path(scenario_path).parent_path() / file).string())) {
+            if (is_golden_image_name(file, c.name) && !wanted.count((fs::path(scenario_path).parent_path() / file).string())) {
                 c.stale_goldens.push_back((fs::path(scenario_path).parent_path() / file).string());
             }
         }
@@ -294,20 +334,21 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
 
 std::string describe_check(const ScenarioCheck& c) {
     std::ostringstream out;
+    const std::string run = "(run '" + (c.update_command.empty() ? std::string("jostle check --update") : c.update_command) + "' to ";
     if (c.bad_input()) {
         out << "ERROR " << c.path << ": " << c.error << "\n";
         return out.str();
     }
-    out << (c.passed() ? "PASS " : "FAIL ") << c.path << " (" << c.actual_ticks << " ticks, " << c.expectations
-        << " expectations, " << c.images.size() << " screenshots)\n";
+    out << (c.passed() ? "PASS " : "FAIL ") << c.path << " (" << counted(c.actual_ticks, "tick") << ", "
+        << counted(c.expectations, "expectation") << ", " << counted(static_cast<std::int64_t>(c.images.size()), "screenshot") << ")\n";
     if (!c.trace_error.empty()) {
-        out << "  trace: the golden cannot be read: " << c.trace_error << " (run 'jostle check --update' to replace it)\n";
+        out << "  trace: the golden cannot be read: " << c.trace_error << " " << run << "replace it)\n";
     } else if (c.trace_missing) {
-        out << "  trace: no golden " << c.trace_path << " (run 'jostle check --update' to create it)\n";
+        out << "  trace: no golden " << c.trace_path << " " << run << "create it)\n";
     } else if (c.first_divergent_tick) {
         out << "  trace: first divergent tick " << *c.first_divergent_tick;
         if (c.expected_hash != c.actual_hash) out << " (expected hash " << hex16(c.expected_hash) << ", got " << hex16(c.actual_hash) << ")";
-        if (c.expected_ticks != c.actual_ticks) out << " (the golden has " << c.expected_ticks << " ticks, this run " << c.actual_ticks << ")";
+        if (c.expected_ticks != c.actual_ticks) out << " (the golden has " << counted(c.expected_ticks, "tick") << ", this run " << c.actual_ticks << ")";
         out << "\n";
         if (c.dump_tick) {
             out << "  at tick " << *c.dump_tick << " (the first dumped tick from there on), expected -> actual:\n";
@@ -324,9 +365,9 @@ std::string describe_check(const ScenarioCheck& c) {
     for (const ImageCheck& i : c.images) {
         if (!i.golden_error.empty()) {
             out << "  screenshot tick " << i.tick << ": the golden cannot be read: " << i.golden_error
-                << " (run 'jostle check --update' to replace it)\n";
+                << " " << run << "replace it)\n";
         } else if (i.golden_missing) {
-            out << "  screenshot tick " << i.tick << ": no golden " << i.golden_path << " (run 'jostle check --update' to create it)\n";
+            out << "  screenshot tick " << i.tick << ": no golden " << i.golden_path << " " << run << "create it)\n";
         } else if (!i.compare.within_tolerance) {
             out << "  screenshot tick " << i.tick << ": ";
             if (!i.compare.same_size) {
@@ -338,7 +379,7 @@ std::string describe_check(const ScenarioCheck& c) {
         }
     }
     for (const std::string& stale : c.stale_goldens) {
-        out << "  stale golden " << stale << ": no screenshot asks for it (run 'jostle check --update' to remove it)\n";
+        out << "  stale golden " << stale << ": no screenshot asks for it " << run << "remove it)\n";
     }
     return out.str();
 }
@@ -413,7 +454,7 @@ void write_report(const std::string& folder, const std::vector<ScenarioCheck>& c
             " .images{display:flex;gap:8px} figure{margin:0}</style></head><body>\n";
     int failed = 0;
     for (const ScenarioCheck& c : checks) failed += c.passed() ? 0 : 1;
-    html << "<h1>jostle check: " << failed << " of " << checks.size() << " scenarios failed</h1>\n";
+    html << "<h1>jostle check: " << failed << " of " << counted(static_cast<std::int64_t>(checks.size()), "scenario") << " failed</h1>\n";
     std::set<std::string> ids;  // scenarios of the same name from different folders get _2, _3...
     for (const ScenarioCheck& c : checks) {
         if (c.passed()) continue;

@@ -63,4 +63,8 @@ std::string shortest_text(float v);
 // 16 lowercase hex digits, zero-padded: state hashes and file fingerprints.
 std::string hex16(std::uint64_t v);
 
+// A count and its noun for messages, plural but for 1: "1 scenario", "0 scenarios",
+// "30 ticks" (`noun` is the singular; the plural adds an 's').
+std::string counted(std::int64_t n, std::string_view noun);
+
 }  // namespace jostle

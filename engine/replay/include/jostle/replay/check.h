@@ -8,7 +8,10 @@
 // tick, and the entities and fields that differ at the first dump from that tick on), the
 // expectations, and the screenshots (image_compare.h). A missing golden is a failure; only an
 // update creates goldens (commit_updates). An unreadable golden (a merge conflict in a trace,
-// a truncated PNG) counts as missing, with the reason, so an update can replace it.
+// a truncated PNG) counts as missing, with the reason, so an update can replace it. Only a
+// file named exactly NAME.tick_T.png, T a tick as the program writes it ("79", never "079"
+// or "79.orig"), is a golden: one no screenshot asks for is stale, and an update removes it;
+// any other file beside the scenario is left alone.
 #pragma once
 
 #include <cstdint>
@@ -27,6 +30,9 @@ struct CheckOptions {
     CompareOptions image_tolerance;  // exact by default
     int dump_every = 10;             // for goldens written by an update
     RenderBackend backend = RenderBackend::osmesa;
+    // The options the hints' 'jostle check --update SCENARIO' needs to find what this check
+    // found, such as {"--assets", DIR} when the assets were given on the command line.
+    std::vector<std::string> update_options;
 };
 
 // A field that differs between the golden and this run at one dumped tick.
@@ -73,10 +79,13 @@ struct ScenarioCheck {
     std::vector<FailedExpectation> failed_expectations;
     std::int64_t expectations = 0;
     std::vector<ImageCheck> images;
-    std::vector<std::string> stale_goldens;  // tick_T.png files no screenshot asks for
+    std::vector<std::string> stale_goldens;  // NAME.tick_T.png files no screenshot asks for
     double seconds = 0.0;
 
     std::string new_trace;  // this run's trace, for an update
+    // The command that re-blesses this scenario, as the hints give it (shell-quoted where a
+    // word needs it): "jostle check --update --assets my_assets 'wall #2.scn'".
+    std::string update_command;
 
     bool bad_input() const { return !error.empty(); }
     bool trace_passed() const { return !trace_missing && !first_divergent_tick && expected_ticks == actual_ticks; }
