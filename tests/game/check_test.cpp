@@ -634,6 +634,36 @@ TEST_F(Check, MalformedShardVariablesExitTwo) {
     }
 }
 
+// ---- which scenarios -------------------------------------------------------------------
+
+TEST_F(Check, AScenarioNamedTwiceByAnySpellingIsCheckedOnce) {
+    const fs::path m = dir_.path() / "m";
+    fs::create_directories(m);
+    const std::string a = scenario("a.scn", kTurn, m);
+    const std::string b = scenario("b.scn", kTurn, m);
+    bless(a);
+    bless(b);
+    const std::string dotted = (m / "." / "b.scn").string();
+    const std::string up = (m / ".." / "m" / "a.scn").string();
+    fs::create_directory_symlink(m, dir_.path() / "link");
+    const std::string through_link = (dir_.path() / "link" / "a.scn").string();
+    // A link to a.scn by another name is a scenario of its own: its goldens are alias.*.
+    fs::create_symlink("a.scn", m / "alias.scn");
+    const std::string alias = (m / "alias.scn").string();
+
+    // In process: the first spelling, in the order given; folders in name order.
+    EXPECT_EQ(collect_scenarios({m.string(), a, dotted, up, through_link}), (std::vector<std::string>{a, alias, b}));
+    EXPECT_EQ(collect_scenarios({dotted, up, m.string(), b, through_link}), (std::vector<std::string>{dotted, up, alias}));
+    EXPECT_EQ(collect_scenarios({through_link, a, a}), (std::vector<std::string>{through_link}));
+
+    // End to end: `check M M/b.scn M/./b.scn` checks M's three scenarios once each.
+    fs::remove(m / "alias.scn");
+    const RunResult r = check({m.string(), b, dotted});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, pass_line(a, 5, 0) + "\n" + pass_line(b, 5, 0) + "\nchecked 2 scenarios: 2 passed, 0 failed\n");
+}
+
 // ---- --jobs ----------------------------------------------------------------------------
 
 TEST_F(Check, JobsGiveTheSameResultsAndFilesAsOneJob) {
