@@ -613,14 +613,15 @@ TEST_F(Check, MalformedShardVariablesExitTwo) {
     const Case cases[] = {
         {"3", "3", "TEST_SHARD_INDEX 3 must be below TEST_TOTAL_SHARDS 3"},
         {"3", "7", "TEST_SHARD_INDEX 7 must be below TEST_TOTAL_SHARDS 3"},
-        {"0", "0", "TEST_SHARD_INDEX 0 must be below TEST_TOTAL_SHARDS 0"},
+        {"0", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 1, got '0'"},
+        {"1", "1", "TEST_SHARD_INDEX 1 must be below TEST_TOTAL_SHARDS 1"},
         {"3", "x", "TEST_SHARD_INDEX: expected a whole number >= 0, got 'x'"},
         {"3", "-1", "TEST_SHARD_INDEX: expected a whole number >= 0, got '-1'"},
         {"3", "1.5", "TEST_SHARD_INDEX: expected a whole number >= 0, got '1.5'"},
-        {"three", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 0, got 'three'"},
-        {"-3", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 0, got '-3'"},
+        {"three", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 1, got 'three'"},
+        {"-3", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 1, got '-3'"},
         {"3", nullptr, "TEST_SHARD_INDEX: expected a whole number >= 0, got ''"},
-        {nullptr, "0", "TEST_TOTAL_SHARDS: expected a whole number >= 0, got ''"},
+        {nullptr, "0", "TEST_TOTAL_SHARDS: expected a whole number >= 1, got ''"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.message);

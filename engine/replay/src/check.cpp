@@ -427,18 +427,19 @@ std::vector<std::string> select_shard(const std::vector<std::string>& scenarios)
         if (!touch) throw InputError(SourceLocation{status, 0, 0}, "cannot touch the shard status file");
     }
     if (total_text == nullptr && index_text == nullptr) return scenarios;
-    auto number = [](const char* name, const char* text) {
+    auto number = [](const char* name, const char* text, std::int64_t min) {
         std::int64_t v = -1;
         const std::string_view s = text != nullptr ? text : "";
         const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-        if (text == nullptr || ec != std::errc() || end != s.data() + s.size() || v < 0) {
-            throw InputError(std::string(name) + ": expected a whole number >= 0, got '" + std::string(s) + "'");
+        if (text == nullptr || ec != std::errc() || end != s.data() + s.size() || v < min) {
+            throw InputError(std::string(name) + ": expected a whole number >= " + std::to_string(min) + ", got '" +
+                             std::string(s) + "'");
         }
         return v;
     };
-    const std::int64_t total = number("TEST_TOTAL_SHARDS", total_text);
-    const std::int64_t index = number("TEST_SHARD_INDEX", index_text);
-    if (total < 1 || index >= total) {
+    const std::int64_t total = number("TEST_TOTAL_SHARDS", total_text, 1);  // at least one shard
+    const std::int64_t index = number("TEST_SHARD_INDEX", index_text, 0);
+    if (index >= total) {
         throw InputError("TEST_SHARD_INDEX " + std::to_string(index) + " must be below TEST_TOTAL_SHARDS " + std::to_string(total));
     }
     std::vector<std::string> out;
