@@ -6,6 +6,7 @@
 #include <optional>
 #include <set>
 #include <string_view>
+#include <tuple>
 #include <utility>
 
 #include "jostle/core/error.h"
@@ -93,6 +94,26 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
     Level level;
     level.name = name;
     bool have_size = false, have_player = false;
+    // The player's X and Y as written, with their line and columns: a start outside the level
+    // is refused as soon as both the size and the player are known, at the coordinate that is
+    // outside.
+    struct Written {
+        std::string text;
+        int line = 0, column = 0;
+    };
+    Written player_x, player_y;
+    const auto check_player_start = [&]() {
+        if (!have_size || !have_player) return;
+        for (const auto& [value, limit, written, axis, side] :
+             {std::tuple{level.player_start.x, level.size.x, &player_x, "X", "width"},
+              std::tuple{level.player_start.y, level.size.y, &player_y, "Y", "height"}}) {
+            if (!(value >= 0.0f && value <= limit)) {
+                throw InputError(SourceLocation{source, written->line, written->column},
+                                 std::string("expected the player's ") + axis + " inside the level, from 0 to " +
+                                     shortest_text(limit) + " (its " + side + "), got '" + written->text + "'");
+            }
+        }
+    };
     std::set<std::string, std::less<>> names;
     int line_number = 0;
     std::size_t at = 0;
@@ -124,6 +145,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             if (have_size) r.fail(words[0].column, "'size' given twice");
             level.size = {r.positive(1, "width"), r.positive(2, "height")};
             have_size = true;
+            check_player_start();
             continue;
         }
         if (head == "player") {
@@ -132,6 +154,9 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             level.player_start = {r.coordinate(1), r.coordinate(2)};
             if (words.size() == 4) level.player_angle = r.number(3);
             have_player = true;
+            player_x = {std::string(words[1].text), line_number, words[1].column};
+            player_y = {std::string(words[2].text), line_number, words[2].column};
+            check_player_start();
             continue;
         }
         if (level.things.size() >= static_cast<std::size_t>(kMaxLevelThings)) {

@@ -260,6 +260,25 @@ TEST(LevelErrors, MissingSizeOrPlayerAndRepeats) {
     EXPECT_EQ(error_of_line("\tsize 10 10"), "l.level:4:2: 'size' given twice");
 }
 
+TEST(LevelErrors, PlayerStartOutsideTheLevel) {
+    const auto x = [](int line, int column, const std::string& width, const std::string& got) {
+        return "l.level:" + std::to_string(line) + ":" + std::to_string(column) + ": expected the player's X inside the level, from 0 to " +
+               width + " (its width), got '" + got + "'";
+    };
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer 1000 1000 0\n"), x(3, 8, "640", "1000"));
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer 640.5 10\n"), x(3, 8, "640", "640.5"));
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer -1 10\n"), x(3, 8, "640", "-1"));
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer 100  -0.5\n"),
+              "l.level:3:13: expected the player's Y inside the level, from 0 to 480 (its height), got '-0.5'");
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480.5\nplayer 10 481\n"),
+              "l.level:3:11: expected the player's Y inside the level, from 0 to 480.5 (its height), got '481'");
+    // The player line before the size line: said at the player line, once the size is known.
+    EXPECT_EQ(error_of("jostle-level 1\nplayer 700 10\n# the arena\nsize 640 480\nwall w 0 0 1 1\n"), x(2, 8, "640", "700"));
+    // The edges are inside.
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer 0 0\n"), "no error");
+    EXPECT_EQ(error_of("jostle-level 1\nplayer 640 480\nsize 640 480\n"), "no error");
+}
+
 TEST(LevelErrors, WrongWordCounts) {
     EXPECT_EQ(error_of("jostle-level 1\nsize 640\n"), "l.level:2:9: expected 'size WIDTH HEIGHT'");
     EXPECT_EQ(error_of("jostle-level 1\nsize 640 480 1\n"), "l.level:2:14: expected 'size WIDTH HEIGHT'");
@@ -291,7 +310,7 @@ TEST(LevelErrors, NumbersTooBigNotFiniteOrNotPositive) {
     EXPECT_EQ(error_of_line("rock r poly 0 0 0 0 1e5 0 0 100000.01"), number(29, "100000.01"));
     EXPECT_EQ(error_of_line("crate c 1 2 3 4 0.5rad"), "l.level:4:17: expected a number from -1e6 to 1e6, got '0.5rad'");
     EXPECT_EQ(error_of_line("cannon k 1 2 2e6 10 600"), "l.level:4:14: expected a number from -1e6 to 1e6, got '2e6'");
-    EXPECT_EQ(error_of("jostle-level 1\nsize 1e5 1e5\nplayer -1e5 0 -1e6\n"), "no error");  // the limits themselves are fine
+    EXPECT_EQ(error_of("jostle-level 1\nsize 1e5 1e5\nplayer 1e5 0 -1e6\nwall w -1e5 -1e5 1e5 1e5\n"), "no error");  // the limits themselves are fine
     EXPECT_EQ(error_of("jostle-level 1\nsize 0 480\nplayer 0 0\n"), "l.level:2:6: expected a positive width, got '0'");
     EXPECT_EQ(error_of("jostle-level 1\nsize 640 -1\nplayer 0 0\n"), "l.level:2:10: expected a positive height, got '-1'");
     EXPECT_EQ(error_of_line("pickup p 1 2 0"), "l.level:4:14: expected a positive radius, got '0'");
