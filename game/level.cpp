@@ -200,13 +200,13 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
                 words.resize(words.size() - 2);  // the shape's words are checked as if it were not there
             }
             if (r.word(2).text == "circle") {
-                r.expect_words(6, 6, "rock NAME circle X Y RADIUS");
+                r.expect_words(6, 6, "rock NAME circle X Y RADIUS [mass M]");
                 thing.kind = LevelThing::Kind::rock_circle;
                 thing.position = {r.coordinate(3), r.coordinate(4)};
                 thing.radius = r.positive(5, "radius");
             } else if (r.word(2).text == "poly") {
                 if (r.size() < 11 || (r.size() - 5) % 2 != 0) {
-                    r.expect_words(11, 11, "rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs");
+                    r.expect_words(11, 11, "rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs [mass M]");
                 }
                 const std::size_t max_words = 5 + 2 * static_cast<std::size_t>(kMaxPolygonVertices);
                 if (r.size() > max_words) {
@@ -219,7 +219,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
                 for (std::size_t i = 5; i + 1 < r.size(); i += 2) points.push_back({r.coordinate(i), r.coordinate(i + 1)});
                 std::string error;
                 const std::optional<Polygon> polygon = make_polygon(points, &error);
-                if (!polygon) r.fail(r.word(5).column, "not a convex polygon: " + error);
+                if (!polygon) r.fail(r.word(5).column, error);  // "polygon is not convex at vertex 2", ...
                 thing.polygon = *polygon;
             } else {
                 r.fail(r.word(2).column, "expected 'circle' or 'poly', got '" + std::string(r.word(2).text) + "'");

@@ -165,7 +165,11 @@ TEST(Level, MassPropsAndBlobs) {
 TEST(LevelErrors, MassPropsAndBlobs) {
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 0"), "l.level:4:26: expected a positive mass, got '0'");
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 2000"), "l.level:4:26: expected a mass of at most 1000");
-    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS [mass M]'");
+    // A misspelt 'mass' is two words too many: the form says what may follow the radius.
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mas 4"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS [mass M]'");
+    EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 mas"),
+              "l.level:4:29: expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs [mass M]'");
     EXPECT_EQ(error_of_line("prop t tree 1"), "l.level:4:14: expected 'prop NAME SPRITE X Y'");
     EXPECT_EQ(error_of_line("blob b 1 2 3 4 0"), "l.level:4:16: expected a positive speed, got '0'");
     EXPECT_EQ(error_of_line("blob b 1 2 3 4"), "l.level:4:15: expected 'blob NAME X0 Y0 X1 Y1 SPEED'");
@@ -230,16 +234,16 @@ TEST(LevelErrors, DuplicateAndReservedNames) {
 TEST(LevelErrors, PolygonRocks) {
     // A dart: the vertex (0, 0) points inwards.
     EXPECT_EQ(error_of_line("rock r poly 100 100 -10 -10 10 -10 0 0 10 10 -10 10"),
-              "l.level:4:21: not a convex polygon: polygon is not convex at vertex 2");
+              "l.level:4:21: polygon is not convex at vertex 2");
     EXPECT_EQ(error_of_line("rock r poly 100 100 0 0 1 1 2 2"),
-              "l.level:4:21: not a convex polygon: polygon has zero area (all vertices on one line)");
+              "l.level:4:21: polygon has zero area (all vertices on one line)");
     EXPECT_EQ(error_of_line("rock r poly 100 100 0 0 5 0 0 0"),
-              "l.level:4:21: not a convex polygon: polygon vertices 0 and 2 are the same point");
+              "l.level:4:21: polygon vertices 0 and 2 are the same point");
     std::string seventeen = "rock r poly 0 0";
     for (int i = 0; i < 17; ++i) seventeen.append(" ").append(std::to_string(i)).append(" ").append(std::to_string(i * i));
     // Too many vertices is said at the first one too many, before any number is read.
     EXPECT_EQ(error_of_line(seventeen), "l.level:4:105: a polygon has at most 16 vertices, got 17");
-    const std::string form = "expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs'";
+    const std::string form = "expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs [mass M]'";
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0"), "l.level:4:24: " + form);        // two vertices
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 5"), "l.level:4:29: " + form);  // a lone coordinate
     EXPECT_EQ(error_of_line("rock r square 1 2 3"), "l.level:4:8: expected 'circle' or 'poly', got 'square'");
@@ -288,8 +292,8 @@ TEST(LevelErrors, WrongWordCounts) {
     EXPECT_EQ(error_of_line("wall"), "l.level:4:5: expected 'wall NAME X0 Y0 X1 Y1'");
     EXPECT_EQ(error_of_line("crate c 1 2 3 4"), "l.level:4:16: expected 'crate NAME X Y WIDTH HEIGHT ANGLE'");
     EXPECT_EQ(error_of_line("rock r"), "l.level:4:7: expected 'rock NAME circle|poly ...'");
-    EXPECT_EQ(error_of_line("rock r circle 1 2"), "l.level:4:18: expected 'rock NAME circle X Y RADIUS'");
-    EXPECT_EQ(error_of_line("rock r circle 1 2 3 4"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2"), "l.level:4:18: expected 'rock NAME circle X Y RADIUS [mass M]'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 4"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS [mass M]'");
     EXPECT_EQ(error_of_line("pickup p 1 2"), "l.level:4:13: expected 'pickup NAME X Y RADIUS'");
     EXPECT_EQ(error_of_line("cannon k 1 2 3 4"), "l.level:4:17: expected 'cannon NAME X Y ANGLE PERIOD_TICKS BALL_SPEED'");
 }
