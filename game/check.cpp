@@ -54,7 +54,8 @@ options:
                     and diff images side by side) and DIR/junit.xml (every scenario); not
                     a folder of the scenarios checked (it would mix with goldens) nor the
                     assets' levels or sprites folder (the images would be sprites)
-  --jobs N          check N scenarios at once, 1 to 256 (default 1)
+  --jobs N          check N scenarios at once, 1 to 256 (default 1); the results are
+                    printed in scenario order all the same
   --tolerance N     per-channel difference (0..255) that still counts as equal in images
   --max-pixels N    how many pixels may differ in each image (0..9223372036854775807; default 0)
   --assets DIR      where the levels are (default: $JOSTLE_ASSETS, else the source tree's)
@@ -156,7 +157,11 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
         if (!report.empty()) create_report_folder(report);  // a bad --report is said before the run
         std::vector<ScenarioCheck> checks(scenarios.size());
         std::atomic<std::size_t> next{0};
+        // Results are printed in scenario order whatever the order the jobs finish in: one that
+        // finishes early waits in `shown` until those before it are printed.
         std::mutex print;
+        std::vector<std::optional<std::string>> shown(scenarios.size());
+        std::size_t printed = 0;
         // Tests interrupt a run at a chosen point: JOSTLE_TEST_INTERRUPT=after-check raises SIGINT
         // once the first scenario is checked, =after-staged once the first new golden is staged.
         const char* test_hook = std::getenv("JOSTLE_TEST_INTERRUPT");
@@ -166,13 +171,17 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
         auto worker = [&]() {
             try {
                 for (std::size_t i = next++; i < scenarios.size(); i = next++) {
-                    checks[i] = check_scenario(game, scenarios[i], options);
+                    ScenarioCheck check = check_scenario(game, scenarios[i], options);
                     // An update reports the goldens it changes at the end; what it cannot fix
                     // (a failed expectation, bad input) is reported here as in a plain check.
-                    if (!update || !checks[i].goldens_differ() || checks[i].bad_input() ||
-                        !checks[i].failed_expectations.empty()) {
+                    const bool report_now = !update || !check.goldens_differ() || check.bad_input() ||
+                                            !check.failed_expectations.empty();
+                    std::string text = report_now ? describe_check(check) : std::string();
+                    {
                         const std::lock_guard<std::mutex> lock(print);
-                        out << describe_check(checks[i]) << std::flush;
+                        checks[i] = std::move(check);
+                        shown[i] = std::move(text);
+                        for (; printed < shown.size() && shown[printed]; ++printed) out << *shown[printed] << std::flush;
                     }
                     if (interrupt_at == "after-check" && i == 0) std::raise(SIGINT);
                     throw_if_interrupted();
@@ -187,6 +196,10 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
         }
         worker();
         for (std::thread& t : threads) t.join();
+        // Stopped by a signal: the results finished after one that was stopped, still in order.
+        for (; printed < shown.size(); ++printed) {
+            if (shown[printed]) out << *shown[printed] << std::flush;
+        }
         throw_if_interrupted();
 
         int bad = 0, failed = 0;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <set>
 #include <string_view>
+#include <tuple>
 #include <utility>
 
 #include "jostle/core/error.h"
@@ -93,6 +94,26 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
     Level level;
     level.name = name;
     bool have_size = false, have_player = false;
+    // The player's X and Y as written, with their line and columns: a start outside the level
+    // is refused as soon as both the size and the player are known, at the coordinate that is
+    // outside.
+    struct Written {
+        std::string text;
+        int line = 0, column = 0;
+    };
+    Written player_x, player_y;
+    const auto check_player_start = [&]() {
+        if (!have_size || !have_player) return;
+        for (const auto& [value, limit, written, axis, side] :
+             {std::tuple{level.player_start.x, level.size.x, &player_x, "X", "width"},
+              std::tuple{level.player_start.y, level.size.y, &player_y, "Y", "height"}}) {
+            if (!(value >= 0.0f && value <= limit)) {
+                throw InputError(SourceLocation{source, written->line, written->column},
+                                 std::string("expected the player's ") + axis + " inside the level, from 0 to " +
+                                     shortest_text(limit) + " (its " + side + "), got '" + written->text + "'");
+            }
+        }
+    };
     std::set<std::string, std::less<>> names;
     int line_number = 0;
     std::size_t at = 0;
@@ -124,6 +145,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             if (have_size) r.fail(words[0].column, "'size' given twice");
             level.size = {r.positive(1, "width"), r.positive(2, "height")};
             have_size = true;
+            check_player_start();
             continue;
         }
         if (head == "player") {
@@ -132,6 +154,9 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             level.player_start = {r.coordinate(1), r.coordinate(2)};
             if (words.size() == 4) level.player_angle = r.number(3);
             have_player = true;
+            player_x = {std::string(words[1].text), line_number, words[1].column};
+            player_y = {std::string(words[2].text), line_number, words[2].column};
+            check_player_start();
             continue;
         }
         if (level.things.size() >= static_cast<std::size_t>(kMaxLevelThings)) {
@@ -175,13 +200,13 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
                 words.resize(words.size() - 2);  // the shape's words are checked as if it were not there
             }
             if (r.word(2).text == "circle") {
-                r.expect_words(6, 6, "rock NAME circle X Y RADIUS");
+                r.expect_words(6, 6, "rock NAME circle X Y RADIUS [mass M]");
                 thing.kind = LevelThing::Kind::rock_circle;
                 thing.position = {r.coordinate(3), r.coordinate(4)};
                 thing.radius = r.positive(5, "radius");
             } else if (r.word(2).text == "poly") {
                 if (r.size() < 11 || (r.size() - 5) % 2 != 0) {
-                    r.expect_words(11, 11, "rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs");
+                    r.expect_words(11, 11, "rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs [mass M]");
                 }
                 const std::size_t max_words = 5 + 2 * static_cast<std::size_t>(kMaxPolygonVertices);
                 if (r.size() > max_words) {
@@ -194,7 +219,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
                 for (std::size_t i = 5; i + 1 < r.size(); i += 2) points.push_back({r.coordinate(i), r.coordinate(i + 1)});
                 std::string error;
                 const std::optional<Polygon> polygon = make_polygon(points, &error);
-                if (!polygon) r.fail(r.word(5).column, "not a convex polygon: " + error);
+                if (!polygon) r.fail(r.word(5).column, error);  // "polygon is not convex at vertex 2", ...
                 thing.polygon = *polygon;
             } else {
                 r.fail(r.word(2).column, "expected 'circle' or 'poly', got '" + std::string(r.word(2).text) + "'");

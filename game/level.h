@@ -2,7 +2,8 @@
 //
 //   jostle-level 1                          the format version: always the first line
 //   size 640 480                            the arena in world pixels (y down)
-//   player 100 240 0                        x y angle (radians): where the ship starts
+//   player 100 240 0                        x y angle (radians): where the ship starts,
+//                                           inside the size (0 <= x <= width, 0 <= y <= height)
 //   wall top 0 0 640 8                      NAME x0 y0 x1 y1: a static AABB
 //   crate c1 300 200 40 30 0.4              NAME x y width height angle: a pushable OBB
 //   rock r1 circle 400 300 18               NAME circle x y radius: a pushable circle

@@ -15,6 +15,7 @@
 #include <ostream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "arena.h"
 #include "jostle/core/atomic_file.h"
@@ -99,7 +100,9 @@ std::string_view play_help() {
 
 Replays a scenario of the arena game: the level, the seed and the input of every tick come
 from the file, so every run is the same run. Without an output option it only simulates, as
-fast as it can. At the end it prints a summary: ticks, expectations passed, time, speed.
+fast as it can (--frames, --every, --size, --overlay and --no-hud shape the images of --out,
+--sheet and --anim: without one of those they are a note on stderr). At the end it prints a
+summary: ticks, expectations passed, time, speed.
 
 options:
   --out DIR         write frames as DIR/frame_NNNNNN.png (the tick number, zero-padded); not
@@ -142,6 +145,14 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
     bool quiet = false;
     std::string assets = game::default_assets_dir();
     bool options_ended = false;  // after "--", a scenario named "-x.scn" is a scenario
+    // The options that only shape images (frames, sheet, animation), and whether each was given.
+    constexpr std::string_view kImageOptions[] = {"--frames", "--every", "--size", "--overlay", "--no-hud"};
+    bool image_option_given[std::size(kImageOptions)] = {};
+    bool dump_every_given = false;
+    const auto given = [&](std::string_view option) {
+        for (std::size_t k = 0; k < std::size(kImageOptions); ++k) image_option_given[k] |= option == kImageOptions[k];
+        dump_every_given |= option == "--dump-every";
+    };
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
         auto value = [&]() -> std::optional<std::string_view> {
@@ -157,14 +168,17 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             scenario_path = std::string(a);
         } else if (a == "--overlay") {
             options.draw.overlay = true;
+            given(a);
         } else if (a == "--no-hud") {
             options.draw.hud = false;
+            given(a);
         } else if (a == "--quiet") {
             quiet = true;
         } else if (a == "--out" || a == "--frames" || a == "--every" || a == "--size" || a == "--sheet" ||
                    a == "--anim" || a == "--trace" || a == "--dump-every" || a == "--assets") {
             const auto v = value();
             if (!v || v->empty()) return usage(err, std::string(a) + " needs a value");
+            given(a);
             if (a == "--out") options.out_dir = std::string(*v);
             if (a == "--frames") frames_text = std::string(*v);
             if (a == "--sheet") options.sheet_path = std::string(*v);
@@ -201,8 +215,21 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
     if (!selection) return usage(err, "--frames: " + selection_error);
     options.frames = *selection;
     options.frames.set_every(every);
-    if (trace_path.empty() && options.dump_every != 10 && !quiet) {
+    if (trace_path.empty() && dump_every_given && !quiet) {
         err << "jostle play: note: --dump-every has no effect without --trace\n";
+    }
+    if (options.out_dir.empty() && options.sheet_path.empty() && options.anim_path.empty() && !quiet) {
+        std::vector<std::string_view> unused;
+        for (std::size_t k = 0; k < std::size(kImageOptions); ++k) {
+            if (image_option_given[k]) unused.push_back(kImageOptions[k]);
+        }
+        if (!unused.empty()) {
+            err << "jostle play: note: ";
+            for (std::size_t k = 0; k < unused.size(); ++k) {
+                err << (k == 0 ? "" : k + 1 == unused.size() ? " and " : ", ") << unused[k];
+            }
+            err << (unused.size() == 1 ? " has" : " have") << " no effect without --out, --sheet or --anim\n";
+        }
     }
     if (trace_path.empty()) options.dump_every = 0;
 

@@ -13,6 +13,7 @@
 #include <memory>
 #include <new>
 #include <optional>
+#include <set>
 #include <ostream>
 #include <stdexcept>
 #include <utility>
@@ -542,6 +543,41 @@ std::string json_error_message(const Json::exception& e) {
     return message;
 }
 
+// A key given twice in one object ({"op":"collide",...,"op":"cast"}): JSON leaves it to the
+// reader, and nlohmann keeps the last, so the line would be answered as something it does not
+// plainly say. Thrown from the parser's callback, with the key.
+class DuplicateKey : public std::runtime_error {
+public:
+    explicit DuplicateKey(const std::string& key)
+        : std::runtime_error("duplicate key " + quote_input(key) + " (a key may appear only once in an object)") {}
+};
+
+// Parses one query line. Refuses a key given twice in one object (DuplicateKey) and a NUL byte,
+// which the parser would take for the end of the input ("unexpected end of input", or the
+// line silently cut short after a complete object); other errors are Json::parse_error.
+Json parse_query_json(std::string_view line) {
+    const std::size_t nul = line.find('\0');
+    // The keys of each object being read, innermost last (objects nest 100,000 deep: no recursion).
+    std::vector<std::set<std::string, std::less<>>> keys;
+    Json query;
+    try {
+        query = Json::parse(line.begin(), line.end(), [&](int, Json::parse_event_t event, Json& parsed) {
+            if (event == Json::parse_event_t::object_start) keys.emplace_back();
+            if (event == Json::parse_event_t::object_end) keys.pop_back();
+            if (event == Json::parse_event_t::key && !keys.back().insert(parsed.get_ref<const std::string&>()).second) {
+                throw DuplicateKey(parsed.get<std::string>());
+            }
+            return true;
+        });
+    } catch (const Json::parse_error& e) {
+        // e.byte is the 1-based offset of the last byte read: an error at or after the NUL is
+        // the NUL's (the parser reads it as the end of the input).
+        if (nul == std::string_view::npos || e.byte <= nul) throw;
+    }
+    if (nul == std::string_view::npos) return query;
+    throw BadQuery("not valid JSON: a NUL byte (0x00) at column " + std::to_string(nul + 1) + " (is this a binary file?)");
+}
+
 std::string error_line(std::int64_t line_number, const std::string& message) {
     ObjectWriter out;
     out.add_string("error", "line " + std::to_string(line_number) + ": " + message);
@@ -619,9 +655,13 @@ std::string run_query_line(std::string_view line, std::int64_t line_number, bool
     }
     Json query;
     try {
-        query = Json::parse(line.begin(), line.end());
+        query = parse_query_json(line);
     } catch (const Json::exception& e) {
         return failed("not valid JSON: " + json_error_message(e));
+    } catch (const DuplicateKey& e) {
+        return failed(e.what());
+    } catch (const BadQuery& e) {
+        return failed(e.what());
     }
     try {
         return answer_query(query);
@@ -745,8 +785,9 @@ prints as 0); a result too large for a float prints as null.
 errors:
   A line that cannot be answered gets {"error":"line N: ..."} as its output line, saying
   what was wrong and what was expected; the lines after it are still answered. Not valid
-  JSON, a missing or unknown key (usually a typo), a value of the wrong type or range, a
-  bad polygon or mask, an unreadable PNG, and a line longer than 1 MiB are errors.
+  JSON (a NUL byte too), a missing or unknown key (usually a typo), a key given twice in
+  one object, a value of the wrong type or range, a bad polygon or mask, an unreadable PNG,
+  and a line longer than 1 MiB are errors.
   Standard input that cannot be read (a folder) ends the run with a message on stderr.
 
 exit status: 0 every line was answered, 2 some line was an error, stdin could not be read or

@@ -108,6 +108,16 @@ TEST(CheckTextLine, BinaryLongAndOddLinesAreRefusedWithTheirColumn) {
     EXPECT_EQ(line_error("\xed\xa0\x80"), "f.txt:7:1: expected text, got the byte 0xed (not UTF-8: is this a binary file?)");  // a surrogate
 }
 
+TEST(CheckTextLine, AByteOrderMarkAfterTheStartOfTheFileIsSaidAtItsColumn) {
+    // U+FEFF is invisible: "\xef\xbb\xbfwait" would be an unknown step that reads as "wait".
+    const std::string message = ": expected text, got a byte order mark (U+FEFF): it is only allowed at the start of the file";
+    EXPECT_EQ(line_error("\xef\xbb\xbfwait 10"), "f.txt:7:1" + message);
+    EXPECT_EQ(line_error("hold left\xef\xbb\xbf 3"), "f.txt:7:10" + message);
+    EXPECT_EQ(line_error("wait 1 # \xef\xbb\xbf"), "f.txt:7:10" + message);  // in a comment too
+    EXPECT_EQ(line_error("\xef\xbb"), "f.txt:7:1: expected text, got the byte 0xef (not UTF-8: is this a binary file?)");
+    EXPECT_EQ(line_error("\xef\xbb\xbe \xef\xbf\xbf"), "ok");  // its neighbours U+FEFE and U+FFFF are text
+}
+
 TEST(SkipUtf8Bom, OnlyALeadingMark) {
     EXPECT_EQ(skip_utf8_bom("\xef\xbb\xbfjostle-level 1\n"), "jostle-level 1\n");
     EXPECT_EQ(skip_utf8_bom("jostle-level 1\n"), "jostle-level 1\n");

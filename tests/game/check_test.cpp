@@ -613,14 +613,15 @@ TEST_F(Check, MalformedShardVariablesExitTwo) {
     const Case cases[] = {
         {"3", "3", "TEST_SHARD_INDEX 3 must be below TEST_TOTAL_SHARDS 3"},
         {"3", "7", "TEST_SHARD_INDEX 7 must be below TEST_TOTAL_SHARDS 3"},
-        {"0", "0", "TEST_SHARD_INDEX 0 must be below TEST_TOTAL_SHARDS 0"},
+        {"0", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 1, got '0'"},
+        {"1", "1", "TEST_SHARD_INDEX 1 must be below TEST_TOTAL_SHARDS 1"},
         {"3", "x", "TEST_SHARD_INDEX: expected a whole number >= 0, got 'x'"},
         {"3", "-1", "TEST_SHARD_INDEX: expected a whole number >= 0, got '-1'"},
         {"3", "1.5", "TEST_SHARD_INDEX: expected a whole number >= 0, got '1.5'"},
-        {"three", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 0, got 'three'"},
-        {"-3", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 0, got '-3'"},
+        {"three", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 1, got 'three'"},
+        {"-3", "0", "TEST_TOTAL_SHARDS: expected a whole number >= 1, got '-3'"},
         {"3", nullptr, "TEST_SHARD_INDEX: expected a whole number >= 0, got ''"},
-        {nullptr, "0", "TEST_TOTAL_SHARDS: expected a whole number >= 0, got ''"},
+        {nullptr, "0", "TEST_TOTAL_SHARDS: expected a whole number >= 1, got ''"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.message);
@@ -632,6 +633,36 @@ TEST_F(Check, MalformedShardVariablesExitTwo) {
         EXPECT_EQ(r.out, "");
         EXPECT_EQ(r.err, "jostle check: " + c.message + "\n");
     }
+}
+
+// ---- which scenarios -------------------------------------------------------------------
+
+TEST_F(Check, AScenarioNamedTwiceByAnySpellingIsCheckedOnce) {
+    const fs::path m = dir_.path() / "m";
+    fs::create_directories(m);
+    const std::string a = scenario("a.scn", kTurn, m);
+    const std::string b = scenario("b.scn", kTurn, m);
+    bless(a);
+    bless(b);
+    const std::string dotted = (m / "." / "b.scn").string();
+    const std::string up = (m / ".." / "m" / "a.scn").string();
+    fs::create_directory_symlink(m, dir_.path() / "link");
+    const std::string through_link = (dir_.path() / "link" / "a.scn").string();
+    // A link to a.scn by another name is a scenario of its own: its goldens are alias.*.
+    fs::create_symlink("a.scn", m / "alias.scn");
+    const std::string alias = (m / "alias.scn").string();
+
+    // In process: the first spelling, in the order given; folders in name order.
+    EXPECT_EQ(collect_scenarios({m.string(), a, dotted, up, through_link}), (std::vector<std::string>{a, alias, b}));
+    EXPECT_EQ(collect_scenarios({dotted, up, m.string(), b, through_link}), (std::vector<std::string>{dotted, up, alias}));
+    EXPECT_EQ(collect_scenarios({through_link, a, a}), (std::vector<std::string>{through_link}));
+
+    // End to end: `check M M/b.scn M/./b.scn` checks M's three scenarios once each.
+    fs::remove(m / "alias.scn");
+    const RunResult r = check({m.string(), b, dotted});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, pass_line(a, 5, 0) + "\n" + pass_line(b, 5, 0) + "\nchecked 2 scenarios: 2 passed, 0 failed\n");
 }
 
 // ---- --jobs ----------------------------------------------------------------------------
@@ -662,8 +693,8 @@ TEST_F(Check, JobsGiveTheSameResultsAndFilesAsOneJob) {
         EXPECT_TRUE(read_text(one / name) == read_text(four / name)) << name << " differs between --jobs 1 and --jobs 4";
     }
 
-    // Each folder checked by 1, 2 and 4 jobs: the same lines, all PASS (with more than one job
-    // in the order the scenarios finish), the summary last.
+    // Each folder checked by 1, 2 and 4 jobs: the same output, all PASS in scenario order, the
+    // summary last.
     for (const fs::path& where : {one, four}) {
         std::string expected;
         for (const char* name : {"j0.scn", "j1.scn", "j2.scn", "j3.scn"}) expected += pass_line((where / name).string(), 30, 2) + "\n";
@@ -671,18 +702,12 @@ TEST_F(Check, JobsGiveTheSameResultsAndFilesAsOneJob) {
         r = check({"--jobs", "1", where.string()});
         EXPECT_EQ(r.status, 0);
         EXPECT_EQ(r.out, expected);
-        std::vector<std::string> sorted = lines_of(expected);
-        std::sort(sorted.begin(), sorted.end());
         for (const char* jobs : {"2", "4"}) {
             SCOPED_TRACE(where.filename().string() + " --jobs " + jobs);
             r = check({"--jobs", jobs, where.string()});
             EXPECT_EQ(r.status, 0);
             EXPECT_EQ(r.err, "");
-            std::vector<std::string> lines = lines_of(r.out);
-            ASSERT_EQ(lines.size(), 5u) << r.out;
-            EXPECT_EQ(lines.back(), "checked 4 scenarios: 4 passed, 0 failed");
-            std::sort(lines.begin(), lines.end());
-            EXPECT_EQ(lines, sorted);
+            EXPECT_EQ(r.out, expected);
         }
     }
 
@@ -702,14 +727,29 @@ TEST_F(Check, JobsGiveTheSameResultsAndFilesAsOneJob) {
     EXPECT_EQ(verdicts, (std::vector<std::string>{"FAIL " + changed + " (30 ticks, 0 expectations, 2 screenshots)",
                                                   pass_line(scenarios[0], 30, 2), pass_line(scenarios[1], 30, 2),
                                                   pass_line(scenarios[3], 30, 2)}));
-    // The details of the failure are the same as one job prints.
+    // The details of the failure are the same as one job prints, in the same order.
     const RunResult serial = check({"--jobs", "1", one.string()});
     EXPECT_EQ(serial.status, 1);
-    std::vector<std::string> serial_lines = lines_of(serial.out);
-    std::vector<std::string> parallel_lines = lines;
-    std::sort(serial_lines.begin(), serial_lines.end());
-    std::sort(parallel_lines.begin(), parallel_lines.end());
-    EXPECT_EQ(parallel_lines, serial_lines);
+    EXPECT_EQ(r.out, serial.out);
+}
+
+TEST_F(Check, JobsPrintTheResultsInScenarioOrder) {
+    // The first scenario takes far longer than the four after it: the other job checks those
+    // while the first one runs, and their results wait for it.
+    std::vector<std::string> scenarios;
+    scenarios.push_back(scenario("a_long.scn", "0-29999 left\nat 30000 end\n"));
+    for (const char* name : {"b1.scn", "b2.scn", "b3.scn", "b4.scn"}) scenarios.push_back(scenario(name, kTurn));
+    for (const std::string& s : scenarios) bless(s);
+    std::string expected = pass_line(scenarios[0], 30000, 0) + "\n";
+    for (std::size_t i = 1; i < scenarios.size(); ++i) expected += pass_line(scenarios[i], 5, 0) + "\n";
+    expected += "checked 5 scenarios: 5 passed, 0 failed\n";
+    for (const char* jobs : {"2", "3"}) {
+        SCOPED_TRACE(std::string("--jobs ") + jobs);
+        const RunResult r = check({"--jobs", jobs, folder()});
+        EXPECT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(r.err, "");
+        EXPECT_EQ(r.out, expected);
+    }
 }
 
 // ---- usage -----------------------------------------------------------------------------

@@ -165,7 +165,11 @@ TEST(Level, MassPropsAndBlobs) {
 TEST(LevelErrors, MassPropsAndBlobs) {
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 0"), "l.level:4:26: expected a positive mass, got '0'");
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 2000"), "l.level:4:26: expected a mass of at most 1000");
-    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS [mass M]'");
+    // A misspelt 'mass' is two words too many: the form says what may follow the radius.
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mas 4"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS [mass M]'");
+    EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 mas"),
+              "l.level:4:29: expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs [mass M]'");
     EXPECT_EQ(error_of_line("prop t tree 1"), "l.level:4:14: expected 'prop NAME SPRITE X Y'");
     EXPECT_EQ(error_of_line("blob b 1 2 3 4 0"), "l.level:4:16: expected a positive speed, got '0'");
     EXPECT_EQ(error_of_line("blob b 1 2 3 4"), "l.level:4:15: expected 'blob NAME X0 Y0 X1 Y1 SPEED'");
@@ -230,16 +234,16 @@ TEST(LevelErrors, DuplicateAndReservedNames) {
 TEST(LevelErrors, PolygonRocks) {
     // A dart: the vertex (0, 0) points inwards.
     EXPECT_EQ(error_of_line("rock r poly 100 100 -10 -10 10 -10 0 0 10 10 -10 10"),
-              "l.level:4:21: not a convex polygon: polygon is not convex at vertex 2");
+              "l.level:4:21: polygon is not convex at vertex 2");
     EXPECT_EQ(error_of_line("rock r poly 100 100 0 0 1 1 2 2"),
-              "l.level:4:21: not a convex polygon: polygon has zero area (all vertices on one line)");
+              "l.level:4:21: polygon has zero area (all vertices on one line)");
     EXPECT_EQ(error_of_line("rock r poly 100 100 0 0 5 0 0 0"),
-              "l.level:4:21: not a convex polygon: polygon vertices 0 and 2 are the same point");
+              "l.level:4:21: polygon vertices 0 and 2 are the same point");
     std::string seventeen = "rock r poly 0 0";
     for (int i = 0; i < 17; ++i) seventeen.append(" ").append(std::to_string(i)).append(" ").append(std::to_string(i * i));
     // Too many vertices is said at the first one too many, before any number is read.
     EXPECT_EQ(error_of_line(seventeen), "l.level:4:105: a polygon has at most 16 vertices, got 17");
-    const std::string form = "expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs'";
+    const std::string form = "expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs [mass M]'";
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0"), "l.level:4:24: " + form);        // two vertices
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 5"), "l.level:4:29: " + form);  // a lone coordinate
     EXPECT_EQ(error_of_line("rock r square 1 2 3"), "l.level:4:8: expected 'circle' or 'poly', got 'square'");
@@ -260,6 +264,25 @@ TEST(LevelErrors, MissingSizeOrPlayerAndRepeats) {
     EXPECT_EQ(error_of_line("\tsize 10 10"), "l.level:4:2: 'size' given twice");
 }
 
+TEST(LevelErrors, PlayerStartOutsideTheLevel) {
+    const auto x = [](int line, int column, const std::string& width, const std::string& got) {
+        return "l.level:" + std::to_string(line) + ":" + std::to_string(column) + ": expected the player's X inside the level, from 0 to " +
+               width + " (its width), got '" + got + "'";
+    };
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer 1000 1000 0\n"), x(3, 8, "640", "1000"));
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer 640.5 10\n"), x(3, 8, "640", "640.5"));
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer -1 10\n"), x(3, 8, "640", "-1"));
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer 100  -0.5\n"),
+              "l.level:3:13: expected the player's Y inside the level, from 0 to 480 (its height), got '-0.5'");
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480.5\nplayer 10 481\n"),
+              "l.level:3:11: expected the player's Y inside the level, from 0 to 480.5 (its height), got '481'");
+    // The player line before the size line: said at the player line, once the size is known.
+    EXPECT_EQ(error_of("jostle-level 1\nplayer 700 10\n# the arena\nsize 640 480\nwall w 0 0 1 1\n"), x(2, 8, "640", "700"));
+    // The edges are inside.
+    EXPECT_EQ(error_of("jostle-level 1\nsize 640 480\nplayer 0 0\n"), "no error");
+    EXPECT_EQ(error_of("jostle-level 1\nplayer 640 480\nsize 640 480\n"), "no error");
+}
+
 TEST(LevelErrors, WrongWordCounts) {
     EXPECT_EQ(error_of("jostle-level 1\nsize 640\n"), "l.level:2:9: expected 'size WIDTH HEIGHT'");
     EXPECT_EQ(error_of("jostle-level 1\nsize 640 480 1\n"), "l.level:2:14: expected 'size WIDTH HEIGHT'");
@@ -269,8 +292,8 @@ TEST(LevelErrors, WrongWordCounts) {
     EXPECT_EQ(error_of_line("wall"), "l.level:4:5: expected 'wall NAME X0 Y0 X1 Y1'");
     EXPECT_EQ(error_of_line("crate c 1 2 3 4"), "l.level:4:16: expected 'crate NAME X Y WIDTH HEIGHT ANGLE'");
     EXPECT_EQ(error_of_line("rock r"), "l.level:4:7: expected 'rock NAME circle|poly ...'");
-    EXPECT_EQ(error_of_line("rock r circle 1 2"), "l.level:4:18: expected 'rock NAME circle X Y RADIUS'");
-    EXPECT_EQ(error_of_line("rock r circle 1 2 3 4"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2"), "l.level:4:18: expected 'rock NAME circle X Y RADIUS [mass M]'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 4"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS [mass M]'");
     EXPECT_EQ(error_of_line("pickup p 1 2"), "l.level:4:13: expected 'pickup NAME X Y RADIUS'");
     EXPECT_EQ(error_of_line("cannon k 1 2 3 4"), "l.level:4:17: expected 'cannon NAME X Y ANGLE PERIOD_TICKS BALL_SPEED'");
 }
@@ -291,7 +314,7 @@ TEST(LevelErrors, NumbersTooBigNotFiniteOrNotPositive) {
     EXPECT_EQ(error_of_line("rock r poly 0 0 0 0 1e5 0 0 100000.01"), number(29, "100000.01"));
     EXPECT_EQ(error_of_line("crate c 1 2 3 4 0.5rad"), "l.level:4:17: expected a number from -1e6 to 1e6, got '0.5rad'");
     EXPECT_EQ(error_of_line("cannon k 1 2 2e6 10 600"), "l.level:4:14: expected a number from -1e6 to 1e6, got '2e6'");
-    EXPECT_EQ(error_of("jostle-level 1\nsize 1e5 1e5\nplayer -1e5 0 -1e6\n"), "no error");  // the limits themselves are fine
+    EXPECT_EQ(error_of("jostle-level 1\nsize 1e5 1e5\nplayer 1e5 0 -1e6\nwall w -1e5 -1e5 1e5 1e5\n"), "no error");  // the limits themselves are fine
     EXPECT_EQ(error_of("jostle-level 1\nsize 0 480\nplayer 0 0\n"), "l.level:2:6: expected a positive width, got '0'");
     EXPECT_EQ(error_of("jostle-level 1\nsize 640 -1\nplayer 0 0\n"), "l.level:2:10: expected a positive height, got '-1'");
     EXPECT_EQ(error_of_line("pickup p 1 2 0"), "l.level:4:14: expected a positive radius, got '0'");

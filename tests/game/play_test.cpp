@@ -319,6 +319,44 @@ TEST_F(Play, DumpEveryWithoutTraceIsANote) {
     EXPECT_EQ(r.err, "jostle play: note: --dump-every has no effect without --trace\n");
 }
 
+TEST_F(Play, ImageOptionsWithoutAnImageOutputAreANote) {
+    const std::string s = scenario("s.scn", kDrive);
+    RunResult r = play({s, "--overlay"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err, "jostle play: note: --overlay has no effect without --out, --sheet or --anim\n");
+    EXPECT_EQ(r.out.rfind("played " + s + ": 10 ticks", 0), 0u) << r.out;
+    r = play({s, "--no-hud", "--size", "64x48"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err, "jostle play: note: --size and --no-hud have no effect without --out, --sheet or --anim\n");
+    r = play({s, "--no-hud", "--overlay", "--size", "64x48", "--every", "2", "--frames", "0-9", "--dump-every", "5"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err,
+              "jostle play: note: --dump-every has no effect without --trace\n"
+              "jostle play: note: --frames, --every, --size, --overlay and --no-hud have no effect without --out, --sheet or --anim\n");
+    // Given with its default value, an option still does nothing.
+    r = play({s, "--every", "1", "--dump-every", "10"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err,
+              "jostle play: note: --dump-every has no effect without --trace\n"
+              "jostle play: note: --every has no effect without --out, --sheet or --anim\n");
+    // --quiet says nothing; any image output uses them.
+    r = play({s, "--overlay", "--frames", "3", "--quiet"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err, "");
+    for (const char* output : {"--out", "--sheet", "--anim"}) {
+        SCOPED_TRACE(output);
+        const std::string where = path(std::string(output + 2) + (std::string(output) == "--out" ? "" : ".png"));
+        r = play({s, output, where, "--overlay", "--no-hud", "--frames", "3", "--every", "1", "--size", "32x24"});
+        EXPECT_EQ(r.status, 0);
+        EXPECT_EQ(r.err, "");
+    }
+    // Not an error: a failing expectation still exits 1.
+    const std::string failing = scenario("f.scn", "0-9 -\nat 9 expect var score = 99\nat 10 end\n");
+    r = play({failing, "--overlay"});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_THAT(r.err, ::testing::HasSubstr("jostle play: note: --overlay has no effect without --out, --sheet or --anim\n"));
+}
+
 TEST_F(Play, AnimAndSheetAreValidPngs) {
     const std::string s = scenario("s.scn", kDrive);
     const RunResult r = play({s, "--anim", path("run.png"), "--sheet", path("sheet.png"), "--frames", "0-9", "--every", "3",

@@ -389,6 +389,39 @@ TEST(QueryErrors, NotJson) {
     EXPECT_THAT(error_of(R"({"op":"lines",})"), StartsWith("line 1: not valid JSON: "));
 }
 
+TEST(QueryErrors, ANulByteIsSaidWithItsColumn) {
+    using namespace std::string_literals;
+    const auto nul_at = [](int column) {
+        return "line 1: not valid JSON: a NUL byte (0x00) at column " + std::to_string(column) + " (is this a binary file?)";
+    };
+    // Where a value or a key should be (the parser took it for the end of the input).
+    EXPECT_EQ(error_of("{\"op\":\"lines\",\0}"s), nul_at(15));
+    EXPECT_EQ(error_of("\0"s), nul_at(1));
+    // After a whole query: not answered as if the line ended there.
+    const std::string lines = R"({"op":"lines","a":[[0,0],[1,1]],"b":[[0,1],[1,0]]})";
+    EXPECT_EQ(answer(lines), R"({"kind":"point","point":[0.5,0.5]})");
+    EXPECT_EQ(error_of(lines + "\0"s), nul_at(static_cast<int>(lines.size()) + 1));
+    EXPECT_EQ(error_of(lines + " \0{\"op\":1}"s), nul_at(static_cast<int>(lines.size()) + 2));
+    // Inside a string.
+    EXPECT_EQ(error_of("{\"op\":\"li\0nes\"}"s), nul_at(10));
+    // An error before the NUL is that error.
+    const std::string before = error_of("{x\0"s);
+    EXPECT_THAT(before, StartsWith("line 1: not valid JSON: parse error at column 2: syntax error"));
+}
+
+TEST(QueryErrors, AKeyGivenTwiceInAnObjectIsRefused) {
+    const std::string message = "duplicate key \"op\" (a key may appear only once in an object)";
+    EXPECT_EQ(error_of(R"({"op":"collide","a":{"type":"aabb","min":[0,0],"max":[2,2]},"b":{"type":"aabb","min":[1,0],"max":[3,2]},"op":"cast"})"),
+              "line 1: " + message);
+    EXPECT_EQ(error_of(R"({"op":"closest","point":[0,0],"shape":{"type":"circle","center":[0,0],"radius":1,"radius":-2}})", 4),
+              "line 4: duplicate key \"radius\" (a key may appear only once in an object)");
+    EXPECT_EQ(error_of(R"({"op":"lines","op":"lines","a":[[0,0],[1,1]],"b":[[0,1],[1,0]]})"), "line 1: " + message);
+    // The same key in different objects, or as a value, is no duplicate.
+    EXPECT_EQ(answer(collide(circle_at("[0,0]", "1"), circle_at("[1.5,0]", "1"))), R"({"hit":true,"depth":0.5,"normal":[1,0],"mtd":[-0.5,0]})");
+    EXPECT_THAT(error_of(R"({"op":"lines","a":[[0,0],[1,1]],"b":[[0,1],[1,0]],"x":{"op":1,"y":{"op":"op"}}})"),
+                StartsWith("line 1: unknown key \"x\""));
+}
+
 TEST(QueryErrors, NotJsonWithBadUtf8StillAnswersValidJson) {
     // The parser quotes the bad bytes; the answer replaces them and stays valid JSON.
     EXPECT_THAT(error_of("{\"op\":\"\xff\"}"), StartsWith("line 1: not valid JSON: "));

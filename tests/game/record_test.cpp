@@ -199,6 +199,9 @@ TEST_F(Record, BadScriptStepsExitTwoNamingFileLineAndColumn) {
         {"jump 3\n", "1:1: unknown step 'jump'" + unknown_step},
         {"  Wait 3\n", "1:3: unknown step 'Wait'" + unknown_step},
         {"# a comment\n\nwait 2   # two\nhld 3\n", "4:1: unknown step 'hld'" + unknown_step},
+        // An invisible byte order mark (U+FEFF) is said, not shown as part of a word.
+        {"wait 2\n\xef\xbb\xbfwait 3\n",
+         "2:1: expected text, got a byte order mark (U+FEFF): it is only allowed at the start of the file"},
         // Trailing words.
         {"wait 3 now\n", "1:8: expected 'wait TICKS'"},
         {"\twait\t3\tnow\n", "1:9: expected 'wait TICKS'"},

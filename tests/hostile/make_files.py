@@ -88,3 +88,10 @@ write("queries/polygon_1000_vertices.jsonl",
 scenario = (b"jostle-scenario 1\nengine 0.1.0\nlevel ok\nseed 1\ntick-rate 60\nlevel-hash 238c4785c60662f2\n\n"
             b"0-9 left\nat 9 expect player in 99 49 101 51\nat 10 end\n")
 write("scenarios/bom_crlf.scn", b"\xef\xbb\xbf" + scenario.replace(b"\n", b"\r\n"))
+
+# A byte order mark after the start of a file (a file pasted after one that had its own): an
+# invisible U+FEFF, refused at its line and column, not shown inside a word.
+write("scenarios/bom_inside.scn", scenario.replace(b"0-9 left", b"\xef\xbb\xbf0-9 left"))
+write("scripts/bom_inside.script", b"wait 2\n\xef\xbb\xbfwait 3\n")
+# A NUL byte in a query line, where the parser would take it for the end of the input.
+write("queries/nul_byte.jsonl", b'{"op":"lines"\x00,"a":[[0,0],[1,1]],"b":[[0,1],[1,0]]}\n')

@@ -272,6 +272,15 @@ TEST(Scenario, CrlfLineEndingsAreAccepted) {
     EXPECT_EQ(format_scenario(b, kVocabulary), format_scenario(a, kVocabulary));
 }
 
+TEST(ScenarioErrors, AByteOrderMarkOnlyAtTheStart) {
+    EXPECT_EQ(error_of("\xef\xbb\xbf" + with_header("0-2 right\nat 3 end\n")), "no error");
+    const std::string message = ": expected text, got a byte order mark (U+FEFF): it is only allowed at the start of the file";
+    // A file pasted after another one that had its own mark.
+    EXPECT_EQ(error_of(with_header("0-2 right\n\xef\xbb\xbf" "3 up\nat 5 end\n")), "s.scn:8:1" + message);
+    EXPECT_EQ(error_of(with_header("0-2 right \xef\xbb\xbf" "fire\nat 5 end\n")), "s.scn:7:11" + message);
+    EXPECT_EQ(error_of("\xef\xbb\xbf\xef\xbb\xbf" + with_header("at 5 end\n")), "s.scn:1:1" + message);
+}
+
 TEST(Scenario, SeedCoversTheWholeUnsigned64BitRange) {
     EXPECT_EQ(parse(header_with("seed 42", "seed 18446744073709551615") + "0 up\n").seed, UINT64_MAX);
     EXPECT_EQ(parse(header_with("seed 42", "seed 0") + "0 up\n").seed, 0u);

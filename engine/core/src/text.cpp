@@ -151,6 +151,11 @@ void check_text_line(std::string_view line, const std::string& source, int line_
         }
         const std::size_t length = utf8_sequence_length(line, i);
         if (length == 0) fail(i + 1, "expected text, got the byte " + hex_byte(c) + " (not UTF-8: is this a binary file?)");
+        // U+FEFF (EF BB BF) is invisible: in a word it would make "wait" an unknown step that
+        // reads as "wait". skip_utf8_bom takes the one at the start of the file.
+        if (line.substr(i, 3) == "\xef\xbb\xbf") {
+            fail(i + 1, "expected text, got a byte order mark (U+FEFF): it is only allowed at the start of the file");
+        }
         i += length;
     }
     for (const Word& word : split_words(line)) {

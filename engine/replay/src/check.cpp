@@ -386,18 +386,28 @@ std::string describe_check(const ScenarioCheck& c) {
 
 std::vector<std::string> collect_scenarios(const std::vector<std::string>& args) {
     std::vector<std::string> out;
+    // A scenario is its folder and its name: its goldens lie beside that name. Spellings of one
+    // (M/x.scn, M/./x.scn, ./M/x.scn, a folder and a file in it, a link to the folder) are one
+    // scenario, checked once under the first; a link to x.scn by another name or in another
+    // folder is a scenario of its own, with its own goldens.
+    std::set<fs::path> seen;
+    const auto add = [&](const fs::path& scenario) {
+        std::error_code ec;
+        const fs::path folder = fs::canonical(scenario.has_parent_path() ? scenario.parent_path() : fs::path("."), ec);
+        if (seen.insert(ec ? scenario.lexically_normal() : folder / scenario.filename()).second) out.push_back(scenario.string());
+    };
     for (const std::string& arg : args) {
         std::error_code ec;
         if (fs::is_directory(arg, ec)) {
-            std::vector<std::string> found;
+            std::vector<fs::path> found;
             for (const auto& entry : fs::directory_iterator(arg, ec)) {
-                if (entry.path().extension() == ".scn") found.push_back(entry.path().string());
+                if (entry.path().extension() == ".scn") found.push_back(entry.path());
             }
             if (found.empty()) throw InputError(SourceLocation{arg, 0, 0}, "no scenario files (*.scn) in this folder");
-            std::sort(found.begin(), found.end());
-            out.insert(out.end(), found.begin(), found.end());
+            std::sort(found.begin(), found.end(), [](const fs::path& a, const fs::path& b) { return a.string() < b.string(); });
+            for (const fs::path& scenario : found) add(scenario);
         } else if (fs::exists(arg, ec)) {
-            out.push_back(arg);
+            add(arg);
         } else {
             throw InputError(SourceLocation{arg, 0, 0}, "no such scenario file or folder");
         }
@@ -417,18 +427,19 @@ std::vector<std::string> select_shard(const std::vector<std::string>& scenarios)
         if (!touch) throw InputError(SourceLocation{status, 0, 0}, "cannot touch the shard status file");
     }
     if (total_text == nullptr && index_text == nullptr) return scenarios;
-    auto number = [](const char* name, const char* text) {
+    auto number = [](const char* name, const char* text, std::int64_t min) {
         std::int64_t v = -1;
         const std::string_view s = text != nullptr ? text : "";
         const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-        if (text == nullptr || ec != std::errc() || end != s.data() + s.size() || v < 0) {
-            throw InputError(std::string(name) + ": expected a whole number >= 0, got '" + std::string(s) + "'");
+        if (text == nullptr || ec != std::errc() || end != s.data() + s.size() || v < min) {
+            throw InputError(std::string(name) + ": expected a whole number >= " + std::to_string(min) + ", got '" +
+                             std::string(s) + "'");
         }
         return v;
     };
-    const std::int64_t total = number("TEST_TOTAL_SHARDS", total_text);
-    const std::int64_t index = number("TEST_SHARD_INDEX", index_text);
-    if (total < 1 || index >= total) {
+    const std::int64_t total = number("TEST_TOTAL_SHARDS", total_text, 1);  // at least one shard
+    const std::int64_t index = number("TEST_SHARD_INDEX", index_text, 0);
+    if (index >= total) {
         throw InputError("TEST_SHARD_INDEX " + std::to_string(index) + " must be below TEST_TOTAL_SHARDS " + std::to_string(total));
     }
     std::vector<std::string> out;

@@ -29,7 +29,8 @@ std::string_view skip_utf8_bom(std::string_view text);
 // Checks one line of a text file (without its '\n'; a '\r' before it is a CRLF line end and
 // is allowed) and throws InputError naming source:line_number:column when it is longer than
 // kMaxLineBytes, holds a control character (anything below 0x20 but tab, a '\r' inside the
-// line, 0x7f) or bytes that are not UTF-8 (binary garbage), or a word (before any '#'
+// line, 0x7f), bytes that are not UTF-8 (binary garbage) or a byte order mark (U+FEFF: only
+// the file's first bytes may be one, and skip_utf8_bom takes that), or a word (before any '#'
 // comment) longer than kMaxWordBytes.
 void check_text_line(std::string_view line, const std::string& source, int line_number);
 

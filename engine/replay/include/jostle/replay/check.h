@@ -112,7 +112,9 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
 std::string describe_check(const ScenarioCheck& check);
 
 // The scenarios named by `args`: files as they are, folders searched (not recursively) for
-// *.scn, in name order. Throws InputError for a path that does not exist.
+// *.scn, in name order. A scenario named twice, by any spelling of its folder (M/x.scn and
+// M/./x.scn; a folder and a file in it), is listed once, where it first appears. Throws
+// InputError for a path that does not exist.
 std::vector<std::string> collect_scenarios(const std::vector<std::string>& args);
 
 // Sharding, as Bazel and GoogleTest do it: TEST_TOTAL_SHARDS and TEST_SHARD_INDEX (or the
