@@ -125,10 +125,12 @@ options:
   --                what follows is the scenario, even if it starts with '-'
 
 Files are written atomically: an interrupted run never leaves a half-written file. An output
-named /dev/stdout (/dev/fd/1) goes to standard output itself, before the summary (with --quiet,
-alone), and after >> it is appended; --anim needs a file it can patch, not a pipe or >>.
+named /dev/stdout (/dev/fd/1) goes to standard output itself, which then holds it alone (the
+summary goes to stderr), and after >> it is appended; --anim needs a file it can patch, not a
+pipe or >>, and says so before the run.
 Ctrl-C (SIGTERM, SIGHUP) stops between ticks: frames already written are complete, an unfinished
-animation, sheet or trace is not written.
+animation, sheet or trace is not written (but for one sent to a descriptor or pipe, which has
+its bytes as they are made).
 
 exit status: 0 the run's expectations passed, 1 one failed, 2 bad usage or bad input (or
 standard output could not be written: the files written are complete), 130 (143, 129)
@@ -305,16 +307,25 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
                     << "\n";
             }
         }
-        if (!quiet) {
-            out << "played " << scenario_path << ": " << counted(result.ticks, "tick") << ", " << passed << "/"
-                << counted(static_cast<std::int64_t>(result.expectations.size()), "expectation") << " passed, " << ratio_text(result.seconds) << " s ("
-                << ratio_text(static_cast<double>(result.ticks) / std::max(result.seconds, 1e-9)) << " ticks/s)";
-            if (result.frames_rendered > 0) {
-                out << ", " << counted(result.frames_rendered, "frame") << " rendered ("
-                    << ratio_text(static_cast<double>(result.frames_rendered) / std::max(result.seconds, 1e-9))
-                    << " frames/s)";
+        // A file sent to standard output keeps it to itself (text after a trace's last line
+        // or a PNG's last chunk would make it unreadable): the summary goes to stderr then.
+        std::ostream& summary = [&]() -> std::ostream& {
+            for (const std::string* path : {&trace_path, &options.sheet_path, &options.anim_path}) {
+                if (!path->empty() && same_file(*path, "/dev/stdout")) return err;
             }
-            out << "\n";
+            return out;
+        }();
+        if (!quiet) {
+            summary << "played " << scenario_path << ": " << counted(result.ticks, "tick") << ", " << passed << "/"
+                    << counted(static_cast<std::int64_t>(result.expectations.size()), "expectation") << " passed, "
+                    << ratio_text(result.seconds) << " s ("
+                    << ratio_text(static_cast<double>(result.ticks) / std::max(result.seconds, 1e-9)) << " ticks/s)";
+            if (result.frames_rendered > 0) {
+                summary << ", " << counted(result.frames_rendered, "frame") << " rendered ("
+                        << ratio_text(static_cast<double>(result.frames_rendered) / std::max(result.seconds, 1e-9))
+                        << " frames/s)";
+            }
+            summary << "\n";
             // Only what was written: a frame selection past the end of the run writes nothing.
             const auto wrote = [&](const std::string& path) {
                 return std::find(result.files_written.begin(), result.files_written.end(), path) != result.files_written.end();
@@ -322,11 +333,11 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             std::int64_t frames = 0;
             for (const std::string& path : result.files_written) frames += path != options.sheet_path && path != options.anim_path;
             if (!options.out_dir.empty()) {
-                out << "frames: " << frames << " in " << options.out_dir << (options.out_dir.ends_with('/') ? "" : "/") << "\n";
+                summary << "frames: " << frames << " in " << options.out_dir << (options.out_dir.ends_with('/') ? "" : "/") << "\n";
             }
-            if (wrote(options.sheet_path)) out << "contact sheet: " << options.sheet_path << "\n";
-            if (wrote(options.anim_path)) out << "animation: " << options.anim_path << "\n";
-            if (!trace_path.empty()) out << "trace: " << trace_path << "\n";
+            if (wrote(options.sheet_path)) summary << "contact sheet: " << options.sheet_path << "\n";
+            if (wrote(options.anim_path)) summary << "animation: " << options.anim_path << "\n";
+            if (!trace_path.empty()) summary << "trace: " << trace_path << "\n";
         }
         return result.expectations_passed() ? 0 : 1;
     } catch (const InputError& e) {

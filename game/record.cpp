@@ -238,8 +238,8 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         std::ostream& summary = same_file(out_path, "/dev/stdout") ? err : out;
         summary << "recorded " << counted(static_cast<std::int64_t>(recording.hashes.size()), "tick") << " of level "
                 << recording.scenario.level << " to " << out_path
-                << (file.in_place() ? " (not read back, as it is not a regular file: the bytes sent were replayed first, the "
-                                      "same state on every tick)\n"
+                << (file.in_place() ? " (not read back, as it was written in place, to a descriptor or a stream: the bytes "
+                                      "sent were replayed first, the same state on every tick)\n"
                                     : " (read back and replayed: the same state on every tick)\n");
         return 0;
     } catch (const InputError& e) {

@@ -67,7 +67,7 @@ TEST(LineIntersect, DegenerateLineIsParallelToEverything) {
 
 // The decisions are exact for any float coefficients: det and the same-line test are zero
 // only when they are zero in exact arithmetic (double holds the products exactly). Each case
-// failed when they were taken in float.
+// but the last failed when they were taken in float.
 TEST(LineIntersect, ExactForTinyAndNearlyParallelCoefficients) {
     // Lines through points 1e-23 apart (y = x and y = 1): det = 1e-46 underflowed in float,
     // and both lines were called coincident.
@@ -86,7 +86,7 @@ TEST(LineIntersect, ExactForTinyAndNearlyParallelCoefficients) {
     const LineIntersection nearly = intersect(l1, Line{1.0f + e, 1.0f, e * e});
     EXPECT_EQ(nearly.kind, LineRelation::point);
     EXPECT_EQ(nearly.point, (Vec2{-(1.0f - e), 1.0f}));
-    // A crossing beyond float's range is reported as parallel (no point to give).
+    // A crossing beyond float's range is reported as parallel (no point to give), as before.
     EXPECT_EQ(intersect(Line{1.0f, 1.0f, 3e38f}, Line{1.0f + std::ldexp(1.0f, -23), 1.0f, -3e38f}).kind,
               LineRelation::parallel);
 }
@@ -348,6 +348,7 @@ TEST(ClosestPointVec2, NonFiniteInputOrNoBoundaryAnswersTheOrigin) {
     const Line x_axis = line_through({0, 0}, {1, 0});
     EXPECT_EQ(closest_point(x_axis, Vec2{inf, 3}), origin);
     EXPECT_EQ(closest_point(Line{nan, 1, 0}, Vec2{2, 3}), origin);
+    EXPECT_EQ(closest_point(Line{1e-20f, 0, 3e38f}, Vec2{0, 0}), origin);  // the foot at x = 3e58
     int edge = 7;
     EXPECT_EQ(closest_point_on_boundary(Polygon{}, Vec2{7, 1}, &edge), origin);
     EXPECT_EQ(edge, -1);

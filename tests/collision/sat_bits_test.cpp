@@ -221,7 +221,8 @@ std::optional<Polygon> random_polygon_up_to_16(test::BitsDraw& g, Vec2 at, float
     return make_polygon(pts);  // nullopt for points the rounding made collinear or repeated
 }
 
-// Every pair both ways, with the AVX2 paths on (where the CPU has them) and off.
+// Every pair both ways, with the AVX2 paths on (where the CPU has them: else both runs take
+// the SSE path, which the tests below record) and off.
 ::testing::AssertionResult polygon_pair_matches(const Polygon& a, const Polygon& b) {
     const Manifold want_ab = scalar_polygon_polygon(a, b), want_ba = scalar_polygon_polygon(b, a);
     for (const bool avx2 : {true, false}) {
@@ -235,6 +236,7 @@ std::optional<Polygon> random_polygon_up_to_16(test::BitsDraw& g, Vec2 at, float
 }
 
 TEST(SatBits, PolygonPolygonMatchesTheScalarFaceLoop) {
+    RecordProperty("avx2_paths", detail::use_avx2_paths(true) ? "on and off" : "none on this CPU: SSE only");
     test::BitsDraw g(0x9a1eu, 1000);
     int hits = 0, pairs = 0;
     for (int k = 0; k < 200000; ++k) {
@@ -265,6 +267,7 @@ TEST(SatBits, PolygonPolygonMatchesTheScalarFaceLoop) {
 // Past the limits: polygons scaled and moved until separations overflow to +-inf or NaN,
 // and an empty Polygon, which every query answers with a miss.
 TEST(SatBits, PolygonPolygonMatchesTheScalarFaceLoopPastTheLimits) {
+    RecordProperty("avx2_paths", detail::use_avx2_paths(true) ? "on and off" : "none on this CPU: SSE only");
     test::BitsDraw g(0x51c4u, 1000);
     const float scales[] = {1.0f, 1e6f, 1e17f, 1e18f};
     const float shifts[] = {0.0f, 1e30f, 1.7e38f, 2e38f, -2e38f};

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -180,8 +181,46 @@ TEST_F(AtomicFileTest, ADescriptorOfThisProcessIsWrittenThroughNotOpenedAgain) {
     // Two names of one descriptor are one output; a closed one cannot be written, said early.
     EXPECT_TRUE(same_file(name, "/proc/self/fd/" + std::to_string(append)));
     ::close(append);
-    EXPECT_THROW(check_writable(name), InputError);
-    EXPECT_THROW(AtomicFile{name}, InputError);
+    const auto message_of = [](auto&& attempt) -> std::string {
+        try {
+            attempt();
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    const std::string closed = name + ": cannot write: descriptor " + std::to_string(append) + " is not open";
+    EXPECT_EQ(message_of([&] { check_writable(name); }), closed);
+    EXPECT_EQ(message_of([&] { AtomicFile file(name); }), closed);
+    // One open for reading only says so.
+    const int reading = ::open(path("log.txt").c_str(), O_RDONLY | O_CLOEXEC);
+    ASSERT_GE(reading, 0);
+    const std::string read_only = "/dev/fd/" + std::to_string(reading);
+    EXPECT_EQ(message_of([&] { check_writable(read_only); }),
+              read_only + ": cannot write: descriptor " + std::to_string(reading) + " is open for reading only");
+    ::close(reading);
+}
+
+// Two descriptors on one pipe are one output (bytes of one would land in the other's), but
+// two on one terminal are not: an interactive shell's stdin, stdout and stderr are all one
+// terminal, and a script typed there while a scenario is printed there is no clash.
+TEST_F(AtomicFileTest, DescriptorsOnOnePipeAreOneFileButNotOnOneTerminal) {
+    int ends[2];
+    ASSERT_EQ(::pipe(ends), 0);
+    EXPECT_TRUE(same_file("/dev/fd/" + std::to_string(ends[1]), "/dev/fd/" + std::to_string(ends[0])));
+    ::close(ends[0]);
+    ::close(ends[1]);
+    const int terminal = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (terminal < 0 || ::grantpt(terminal) != 0 || ::unlockpt(terminal) != 0) {
+        if (terminal >= 0) ::close(terminal);
+        GTEST_SKIP() << "no pseudo-terminal here";
+    }
+    const int again = ::fcntl(terminal, F_DUPFD_CLOEXEC, 3);
+    ASSERT_GE(again, 0);
+    EXPECT_FALSE(same_file("/dev/fd/" + std::to_string(terminal), "/dev/fd/" + std::to_string(again)));
+    EXPECT_TRUE(same_file("/dev/fd/" + std::to_string(terminal), "/dev/fd/" + std::to_string(terminal)));
+    ::close(again);
+    ::close(terminal);
 }
 
 // A link to a file: the file gets the new bytes and the link stays a link; a dangling link is

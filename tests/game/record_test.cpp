@@ -651,8 +651,8 @@ TEST_F(Record, AScenarioToDevStdoutIsTheWholeOfStandardOutput) {
                                                           JOSTLE_BINARY, "record", "--assets", kAssets, "--level", "arena", "-o",
                                                           "/dev/stdout", "--script", script});
         EXPECT_EQ(r.status, 0);
-        EXPECT_EQ(r.err, "recorded 3 ticks of level arena to /dev/stdout (not read back, as it is not a regular file: the bytes "
-                         "sent were replayed first, the same state on every tick)\n");
+        EXPECT_EQ(r.err, "recorded 3 ticks of level arena to /dev/stdout (not read back, as it was written in place, to a "
+                         "descriptor or a stream: the bytes sent were replayed first, the same state on every tick)\n");
         EXPECT_EQ(read_text(path("f.scn")), expected);
     }
     EXPECT_EQ(play_hashes(path("f.scn"), "f.trace"), play_hashes(path("ref.scn"), "ref.trace"));

@@ -94,7 +94,10 @@ Vec2 closest_point(const Line& line, Vec2 p) {
     if (!finite_line(line) || !finite(p)) return {};
     const Line perp{-line.b, line.a, -line.b * p.x + line.a * p.y};
     const LineIntersection x = intersect(line, perp);
-    return x.kind == LineRelation::point ? x.point : p;
+    if (x.kind == LineRelation::point) return x.point;
+    // No crossing: the line is degenerate (its answer is p), or the foot lies past float's
+    // range (no answer: {0, 0}, as for every closest point).
+    return line.a == 0.0f && line.b == 0.0f ? p : Vec2{};
 }
 
 Vec2 closest_point(const Segment& seg, Vec2 p) {

@@ -77,10 +77,12 @@ void flush_printed(int fd) {
     }
 }
 
-// Whether fd is open for writing.
-bool writable_descriptor(int fd) {
+// Why descriptor fd cannot be written, or "" when it can.
+std::string unwritable_descriptor(int fd) {
     const int flags = ::fcntl(fd, F_GETFL);
-    return flags >= 0 && (flags & O_ACCMODE) != O_RDONLY;
+    if (flags < 0) return "descriptor " + std::to_string(fd) + " is not open";
+    if ((flags & O_ACCMODE) == O_RDONLY) return "descriptor " + std::to_string(fd) + " is open for reading only";
+    return "";
 }
 
 }  // namespace
@@ -90,7 +92,7 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
         // Written through a copy of the descriptor itself, sharing its offset and O_APPEND,
         // unbuffered and after what was printed to it: the bytes land where the program's
         // own output to it would, in the order the program made them.
-        if (!writable_descriptor(fd)) fail(std::strerror(EBADF));
+        if (const std::string why = unwritable_descriptor(fd); !why.empty()) fail(why);
         const int copy = ::fcntl(fd, F_DUPFD_CLOEXEC, 3);
         if (copy < 0) fail(std::strerror(errno));
         file_ = ::fdopen(copy, "wb");
@@ -172,6 +174,9 @@ void AtomicFile::write(const void* data, std::size_t size) {
     if (descriptor_ >= 0) flush_printed(descriptor_);
     if (size != 0 && std::fwrite(data, 1, size, file_) != size) {
         const int e = errno;
+        // Ctrl-C while a write waited on a full pipe: the run was stopped, not the output
+        // refused (the handler does not restart the call).
+        if (e == EINTR) throw_if_interrupted();
         fail(std::strerror(e));
     }
 }
@@ -252,7 +257,7 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
 
 void check_writable(const std::string& path) {
     if (const int fd = own_descriptor(path); fd >= 0) {
-        if (!writable_descriptor(fd)) throw InputError(SourceLocation{path, 0, 0}, "cannot write: " + std::string(std::strerror(EBADF)));
+        if (const std::string why = unwritable_descriptor(fd); !why.empty()) throw InputError(SourceLocation{path, 0, 0}, "cannot write: " + why);
         return;
     }
     std::string resolved;
@@ -265,10 +270,14 @@ bool same_file(const std::string& output, const std::string& other) {
     struct stat a {};
     struct stat b {};
     // Two of this process's descriptors on one file or pipe (/dev/stdout and /dev/fd/1, or
-    // /dev/stderr after 2>&1) are one output: the second's bytes would land in the first's.
+    // /dev/stderr after 2>&1) are one: the second's bytes would land in the first's, or a
+    // script read from it would be what is written. A terminal is not: stdin, stdout and
+    // stderr of an interactive shell are all the one terminal, and typing a script there
+    // while the scenario is printed there is fine.
     const int fa = own_descriptor(output), fb = own_descriptor(other);
     if (fa >= 0 && fb >= 0) {
-        return fa == fb || (::fstat(fa, &a) == 0 && ::fstat(fb, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino);
+        return fa == fb || (::fstat(fa, &a) == 0 && ::fstat(fb, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino &&
+                            !S_ISCHR(a.st_mode));
     }
     const bool a_exists = ::stat(output.c_str(), &a) == 0;
     const bool b_exists = ::stat(other.c_str(), &b) == 0;

@@ -160,7 +160,9 @@ struct AnimationWriter::Impl {
     std::vector<std::span<const std::uint8_t>> pending_data;
     int pending_count = 0;
 
-    Impl(std::string path, const AnimationDesc& d) : file(std::move(path)), desc(d) {}
+    // A target that cannot be patched later (a pipe, `>>`) says so here, before the run that
+    // makes the frames, not at the first frame.
+    Impl(std::string path, const AnimationDesc& d) : file(std::move(path)), desc(d) { (void)file.tell(); }
 
     void write(std::span<const std::uint8_t> bytes) { file.write(bytes.data(), bytes.size()); }
 
@@ -218,8 +220,6 @@ struct AnimationWriter::Impl {
         pending_blend = changes ? kBlendOver : kBlendSource;
         const PngChunks chunks = split_png(pending_png);
         if (added == 0) {
-            // A target that cannot be patched later (a pipe, `>>`) says so before any byte.
-            (void)file.tell();
             write(kPngSignature);
             write_chunk("IHDR", chunks.ihdr);
             actl_offset = file.tell() + 8;

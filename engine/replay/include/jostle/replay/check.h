@@ -84,7 +84,7 @@ struct ScenarioCheck {
 
     std::string new_trace;  // this run's trace, for an update
     // The command that re-blesses this scenario, as the hints give it (shell-quoted where a
-    // word needs it): "jostle check --update --assets my_assets 'wall #2.scn'".
+    // word needs it, in double quotes): jostle check --update --assets my_assets "wall #2.scn".
     std::string update_command;
 
     bool bad_input() const { return !error.empty(); }
