@@ -543,16 +543,9 @@ std::string json_error_message(const Json::exception& e) {
     return message;
 }
 
-// A key given twice in one object ({"op":"collide",...,"op":"cast"}): JSON leaves it to the
-// reader, and nlohmann keeps the last, so the line would be answered as something it does not
-// plainly say. Thrown from the parser's callback, with the key.
-class DuplicateKey : public std::runtime_error {
-public:
-    explicit DuplicateKey(const std::string& key)
-        : std::runtime_error("duplicate key " + quote_input(key) + " (a key may appear only once in an object)") {}
-};
-
-// Parses one query line. Refuses a key given twice in one object (DuplicateKey) and a NUL byte,
+// Parses one query line. Refuses a key given twice in one object ({"op":"collide",...,"op":
+// "cast"}: JSON leaves it to the reader, and nlohmann keeps the last, so the line would be
+// answered as something it does not plainly say) and a NUL byte,
 // which the parser would take for the end of the input ("unexpected end of input", or the
 // line silently cut short after a complete object); other errors are Json::parse_error.
 Json parse_query_json(std::string_view line) {
@@ -565,7 +558,8 @@ Json parse_query_json(std::string_view line) {
             if (event == Json::parse_event_t::object_start) keys.emplace_back();
             if (event == Json::parse_event_t::object_end) keys.pop_back();
             if (event == Json::parse_event_t::key && !keys.back().insert(parsed.get_ref<const std::string&>()).second) {
-                throw DuplicateKey(parsed.get<std::string>());
+                throw BadQuery("duplicate key " + quote_input(parsed.get<std::string>()) +
+                               " (a key may appear only once in an object)");
             }
             return true;
         });
@@ -658,8 +652,6 @@ std::string run_query_line(std::string_view line, std::int64_t line_number, bool
         query = parse_query_json(line);
     } catch (const Json::exception& e) {
         return failed("not valid JSON: " + json_error_message(e));
-    } catch (const DuplicateKey& e) {
-        return failed(e.what());
     } catch (const BadQuery& e) {
         return failed(e.what());
     }
