@@ -37,6 +37,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using test::EnvGuard;
 using test::read_text;
 using test::RunResult;
@@ -276,8 +277,8 @@ TEST_F(Check, AMissingTraceFailsAndAPlainCheckCreatesNothing) {
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
-                     "  trace: no golden " + path("drive.trace") + " (run '" + update(s) + "' to create it)\n"
-                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run '" + update(s) + "' to create it)\n"
+                     "  trace: no golden " + path("drive.trace") + " (to create it: " + update(s) + ")\n"
+                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (to create it: " + update(s) + ")\n"
                      "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_EQ(listing(dir_.path()), std::vector<std::string>{"drive.scn"});
 }
@@ -313,8 +314,9 @@ TEST_F(Check, AReportFolderThatIsTheAssetsSpritesFolderIsRefused) {
 }
 
 // The hints give the command that does what they say: this scenario's path as it was given
-// (shell-quoted when it needs it, after '--' when it starts with '-'), and --assets when it was
-// given. Run through the shell, the command creates the goldens.
+// (single-quoted when it needs it, after '--' when it starts with '-'), and --assets when it was
+// given. The command creates the goldens run by sh -c, and typed into an interactive bash,
+// which expands ! inside double quotes.
 TEST_F(Check, TheHintsCommandCreatesTheGoldens) {
     const fs::path assets = dir_.path() / "my assets";
     for (const char* part : {"levels", "sprites"}) {
@@ -323,35 +325,52 @@ TEST_F(Check, TheHintsCommandCreatesTheGoldens) {
     }
     const fs::path cwd = dir_.path() / "work";
     fs::create_directories(cwd);
-    scenario("-my \"drive\" $1.scn", kDrive, cwd);
-    const std::string given = "-my \"drive\" $1.scn";
-    const std::string quoted = "\"-my \\\"drive\\\" \\$1.scn\"";
+    const std::string stem = "-my \"drive\" $1 it's\\ !!";
+    const std::string given = stem + ".scn";
+    scenario(given, kDrive, cwd);
+    const std::string quoted = "'-my \"drive\" $1 it'\\''s\\ !!.scn'";
     const std::string assets_text = (fs::path("..") / "my assets").string();
-    const std::string command = "jostle check --update --assets \"" + assets_text + "\" -- " + quoted;
+    const std::string command = "jostle check --update --assets '" + assets_text + "' -- " + quoted;
 
     RunResult r = test::run_jostle_binary({"check", "--assets", assets_text, "--", given}, "/dev/null", cwd.string());
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, "FAIL " + given + " (30 ticks, 0 expectations, 1 screenshot)\n"
-                     "  trace: no golden -my \"drive\" $1.trace (run '" + command + "' to create it)\n"
-                     "  screenshot tick 29: no golden -my \"drive\" $1.tick_29.png (run '" + command + "' to create it)\n"
+                     "  trace: no golden " + stem + ".trace (to create it: " + command + ")\n"
+                     "  screenshot tick 29: no golden " + stem + ".tick_29.png (to create it: " + command + ")\n"
                      "checked 1 scenario: 0 passed, 1 failed\n");
 
     // Without --assets (here $JOSTLE_ASSETS says where they are) the command has none.
     env_.set("JOSTLE_ASSETS", assets.string());
     r = test::run_jostle_binary({"check", "--", given}, "/dev/null", cwd.string());
     EXPECT_EQ(r.status, 1) << r.err;
-    EXPECT_THAT(r.out, HasSubstr("(run 'jostle check --update -- " + quoted + "' to create it)\n"));
+    EXPECT_THAT(r.out, HasSubstr("(to create it: jostle check --update -- " + quoted + ")\n"));
     env_.unset("JOSTLE_ASSETS");
 
     // The hint's command, run by the shell where the check ran, with jostle on the PATH.
     const std::string jostle_folder = fs::path(JOSTLE_BINARY).parent_path().string();
     EnvGuard path_guard("PATH", jostle_folder + ":" + (std::getenv("PATH") != nullptr ? std::getenv("PATH") : "/usr/bin:/bin"));
-    r = test::run_program("/bin/sh", {"-c", command}, "/dev/null", cwd.string());
-    EXPECT_EQ(r.status, 0) << r.out << r.err;
-    EXPECT_EQ(listing(cwd), (std::vector<std::string>{"-my \"drive\" $1.scn", "-my \"drive\" $1.tick_29.png", "-my \"drive\" $1.trace"}));
-    r = test::run_jostle_binary({"check", "--assets", assets_text, "--", given}, "/dev/null", cwd.string());
-    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    const std::vector<std::string> blessed = {given, stem + ".tick_29.png", stem + ".trace"};
+    for (const bool interactive : {false, true}) {
+        for (const std::string& name : blessed) {
+            if (name != given) fs::remove(cwd / name);
+        }
+        if (interactive) {
+            // As typed at a prompt: bash -i reading the line from its input, with no startup
+            // files and no history file (history expansion stays on, as at a terminal).
+            const fs::path typed = dir_.path() / "typed.sh";
+            std::ofstream(typed) << command << "\n";
+            EnvGuard histfile("HISTFILE", "/dev/null");
+            r = test::run_program("/bin/bash", {"--norc", "--noprofile", "-i"}, typed.string(), cwd.string());
+        } else {
+            r = test::run_program("/bin/sh", {"-c", command}, "/dev/null", cwd.string());
+        }
+        EXPECT_EQ(r.status, 0) << r.out << r.err;
+        EXPECT_THAT(r.err, Not(HasSubstr("event not found")));
+        EXPECT_EQ(listing(cwd), blessed) << (interactive ? "bash -i" : "sh -c");
+        r = test::run_jostle_binary({"check", "--assets", assets_text, "--", given}, "/dev/null", cwd.string());
+        EXPECT_EQ(r.status, 0) << r.out << r.err;
+    }
 }
 
 TEST_F(Check, AMissingScreenshotGoldenFails) {
@@ -362,7 +381,7 @@ TEST_F(Check, AMissingScreenshotGoldenFails) {
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
-                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (run '" + update(s) + "' to create it)\n"
+                     "  screenshot tick 29: no golden " + path("drive.tick_29.png") + " (to create it: " + update(s) + ")\n"
                      "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_EQ(listing(dir_.path()), (std::vector<std::string>{"drive.scn", "drive.trace"}));
 }
@@ -375,7 +394,7 @@ TEST_F(Check, AStaleScreenshotGoldenFails) {
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
-                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run '" + update(s) + "' to remove it)\n"
+                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (to remove it: " + update(s) + ")\n"
                      "checked 1 scenario: 0 passed, 1 failed\n");
     EXPECT_TRUE(fs::exists(path("drive.tick_5.png")));  // only an update removes it
 }
@@ -403,7 +422,7 @@ TEST_F(Check, OnlyExactGoldenNamesAreStaleAndUpdateRemovesNothingElse) {
     r = check({folder()});
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.out, "FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
-                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (run '" + update(s) + "' to remove it)\n"
+                     "  stale golden " + path("drive.tick_5.png") + ": no screenshot asks for it (to remove it: " + update(s) + ")\n"
                      "checked 1 scenario: 0 passed, 1 failed\n");
 
     r = check({"--update", folder()});
@@ -508,7 +527,7 @@ TEST_F(Check, UpdateCannotFixAFailingExpectation) {
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out, "FAIL " + s + " (10 ticks, 1 expectation, 0 screenshots)\n"
-                     "  trace: no golden " + path("e.trace") + " (run '" + update(s) + "' to create it)\n"
+                     "  trace: no golden " + path("e.trace") + " (to create it: " + update(s) + ")\n"
                      "  " + s + ":8: expectation failed at tick 9: expected var score = 5, found score = 0\n"
                      "updated " + s + ": trace created\n"
                      "checked 1 scenario: 1 updated, 1 with failing expectations (an update cannot fix those)\n");
@@ -536,7 +555,7 @@ TEST_F(Check, UnreadableGoldensFailAndAnUpdateReplacesThem) {
     EXPECT_EQ(r.err, "");
     EXPECT_THAT(r.out, HasSubstr("FAIL " + s + " (30 ticks, 0 expectations, 1 screenshot)\n"
                                  "  trace: the golden cannot be read: " + path("drive.trace") + ":1:"));
-    EXPECT_THAT(r.out, HasSubstr("(run '" + update(s) + "' to replace it)\n"
+    EXPECT_THAT(r.out, HasSubstr("(to replace it: " + update(s) + ")\n"
                                  "  screenshot tick 29: the golden cannot be read: " + path("drive.tick_29.png")));
     EXPECT_THAT(r.out, HasSubstr("checked 1 scenario: 0 passed, 1 failed\n"));
 

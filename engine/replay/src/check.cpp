@@ -126,18 +126,17 @@ std::string url_escape(std::string_view text) {
 }
 
 // `word` as one word of a shell command: as it is when it holds only characters no shell
-// treats specially, else in double quotes with \, ", $ and ` escaped.
+// treats specially, else in single quotes.
 std::string shell_word(std::string_view word) {
     const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](char ch) {
         return std::isalnum(static_cast<unsigned char>(ch)) != 0 || std::string_view("_-./+,:=@%").find(ch) != std::string_view::npos;
     });
     if (plain) return std::string(word);
-    std::string out = "\"";
-    for (const char ch : word) {
-        if (ch == '\\' || ch == '"' || ch == '$' || ch == '`') out += '\\';
-        out += ch;
-    }
-    return out + "\"";
+    // Single quotes: nothing inside them is special to any shell (double quotes leave $, `, \ and,
+    // in an interactive bash, ! to expand); a single quote itself ends them, is escaped, reopens.
+    std::string out = "'";
+    for (const char ch : word) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    return out + "'";
 }
 
 std::string update_command_for(const std::string& scenario_path, const CheckOptions& options) {
@@ -334,7 +333,10 @@ std::vector<std::string> commit_updates(const std::vector<ScenarioCheck>& checks
 
 std::string describe_check(const ScenarioCheck& c) {
     std::ostringstream out;
-    const std::string run = "(run '" + (c.update_command.empty() ? std::string("jostle check --update") : c.update_command) + "' to ";
+    // "(to create it: COMMAND)": the command is not wrapped in quotes of its own, so it can be
+    // copied whole whatever quotes its words need.
+    const std::string command = c.update_command.empty() ? std::string("jostle check --update") : c.update_command;
+    const auto run = [&](const char* what) { return std::string("(to ") + what + " it: " + command + ")"; };
     if (c.bad_input()) {
         out << "ERROR " << c.path << ": " << c.error << "\n";
         return out.str();
@@ -342,9 +344,9 @@ std::string describe_check(const ScenarioCheck& c) {
     out << (c.passed() ? "PASS " : "FAIL ") << c.path << " (" << counted(c.actual_ticks, "tick") << ", "
         << counted(c.expectations, "expectation") << ", " << counted(static_cast<std::int64_t>(c.images.size()), "screenshot") << ")\n";
     if (!c.trace_error.empty()) {
-        out << "  trace: the golden cannot be read: " << c.trace_error << " " << run << "replace it)\n";
+        out << "  trace: the golden cannot be read: " << c.trace_error << " " << run("replace") << "\n";
     } else if (c.trace_missing) {
-        out << "  trace: no golden " << c.trace_path << " " << run << "create it)\n";
+        out << "  trace: no golden " << c.trace_path << " " << run("create") << "\n";
     } else if (c.first_divergent_tick) {
         out << "  trace: first divergent tick " << *c.first_divergent_tick;
         if (c.expected_hash != c.actual_hash) out << " (expected hash " << hex16(c.expected_hash) << ", got " << hex16(c.actual_hash) << ")";
@@ -365,9 +367,9 @@ std::string describe_check(const ScenarioCheck& c) {
     for (const ImageCheck& i : c.images) {
         if (!i.golden_error.empty()) {
             out << "  screenshot tick " << i.tick << ": the golden cannot be read: " << i.golden_error
-                << " " << run << "replace it)\n";
+                << " " << run("replace") << "\n";
         } else if (i.golden_missing) {
-            out << "  screenshot tick " << i.tick << ": no golden " << i.golden_path << " " << run << "create it)\n";
+            out << "  screenshot tick " << i.tick << ": no golden " << i.golden_path << " " << run("create") << "\n";
         } else if (!i.compare.within_tolerance) {
             out << "  screenshot tick " << i.tick << ": ";
             if (!i.compare.same_size) {
@@ -379,7 +381,7 @@ std::string describe_check(const ScenarioCheck& c) {
         }
     }
     for (const std::string& stale : c.stale_goldens) {
-        out << "  stale golden " << stale << ": no screenshot asks for it " << run << "remove it)\n";
+        out << "  stale golden " << stale << ": no screenshot asks for it " << run("remove") << "\n";
     }
     return out.str();
 }
