@@ -543,6 +543,22 @@ std::string json_error_message(const Json::exception& e) {
     return message;
 }
 
+// The 1-based column of the line's n-th key (1-based), or 0. The line is valid JSON up to that
+// key (the parser has just read it), so a key is a string followed by ':'.
+std::size_t key_column(std::string_view line, int n) {
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        if (line[i] != '"') continue;
+        const std::size_t start = i;
+        for (++i; i < line.size() && line[i] != '"'; ++i) {
+            if (line[i] == '\\') ++i;
+        }
+        std::size_t next = i + 1;
+        while (next < line.size() && (line[next] == ' ' || line[next] == '\t' || line[next] == '\n' || line[next] == '\r')) ++next;
+        if (next < line.size() && line[next] == ':' && --n == 0) return start + 1;
+    }
+    return 0;
+}
+
 // Parses one query line. Refuses a key given twice in one object ({"op":"collide",...,"op":
 // "cast"}: JSON leaves it to the reader, and nlohmann keeps the last, so the line would be
 // answered as something it does not plainly say) and a NUL byte,
@@ -552,14 +568,15 @@ Json parse_query_json(std::string_view line) {
     const std::size_t nul = line.find('\0');
     // The keys of each object being read, innermost last (objects nest 100,000 deep: no recursion).
     std::vector<std::set<std::string, std::less<>>> keys;
+    int keys_read = 0;
     Json query;
     try {
         query = Json::parse(line.begin(), line.end(), [&](int, Json::parse_event_t event, Json& parsed) {
             if (event == Json::parse_event_t::object_start) keys.emplace_back();
             if (event == Json::parse_event_t::object_end) keys.pop_back();
-            if (event == Json::parse_event_t::key && !keys.back().insert(parsed.get_ref<const std::string&>()).second) {
-                throw BadQuery("duplicate key " + quote_input(parsed.get<std::string>()) +
-                               " (a key may appear only once in an object)");
+            if (event == Json::parse_event_t::key && (++keys_read, !keys.back().insert(parsed.get_ref<const std::string&>()).second)) {
+                throw BadQuery("duplicate key " + quote_input(parsed.get<std::string>()) + " at column " +
+                               std::to_string(key_column(line, keys_read)) + " (a key may appear only once in an object)");
             }
             return true;
         });
