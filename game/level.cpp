@@ -1,8 +1,10 @@
 // level.cpp: parsing the arena's level files (format in level.h).
 #include "level.h"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -42,9 +44,15 @@ public:
         }
         return *value;
     }
-    // A positive length or speed (a radius, a width, px/s): 0 < v <= kMaxCoordinate.
-    float positive(std::size_t i, const char* what) const {
-        const float v = coordinate(i);
+    // A positive length or speed (a radius, a width, px/s): 0 < v <= limit (kMaxCoordinate: a
+    // length is a coordinate), said as one ("expected a positive width", not "a coordinate").
+    float positive(std::size_t i, const char* what, float limit = kMaxCoordinate, const char* limit_text = "1e5") const {
+        const std::optional<float> parsed = parse_float(words_[i].text);
+        const float v = parsed ? *parsed : std::numeric_limits<float>::quiet_NaN();
+        if (v > limit) {
+            fail(words_[i].column, std::string("expected a ") + what + " of at most " + limit_text + ", got '" +
+                                       std::string(words_[i].text) + "'");
+        }
         if (!(v > 0.0f)) {
             const std::string_view text = words_[i].text;
             // 1e-320 is positive, but a float has nothing that small: say why it is refused.
@@ -195,9 +203,14 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             if (r.size() < 3) r.expect_words(3, 3, "rock NAME circle|poly ...");
             take_name();
             if (r.size() >= 5 && r.word(r.size() - 2).text == "mass") {
-                thing.mass = r.positive(r.size() - 1, "mass");
-                if (thing.mass > 1000.0f) r.fail(r.word(r.size() - 1).column, "expected a mass of at most 1000");
+                thing.mass = r.positive(r.size() - 1, "mass", 1000.0f, "1000");
                 words.resize(words.size() - 2);  // the shape's words are checked as if it were not there
+            } else if (const Word& w = r.word(r.size() - 2); r.size() >= 5 && std::isalpha(static_cast<unsigned char>(w.text[0])) != 0 &&
+                                                             !parse_float(w.text) && parse_float(r.word(r.size() - 1).text)) {
+                // "mas 3", "weight 3": a misspelt mass, not a vertex ("expected a coordinate, got 'mas'").
+                r.fail(w.column, "expected 'mass M' or a number, got '" + std::string(w.text) + "'");
+            } else if (const Word& last = r.word(r.size() - 1); r.size() >= 4 && last.text == "mass") {
+                r.fail(last.column + static_cast<int>(last.text.size()), "expected a mass after 'mass'");
             }
             if (r.word(2).text == "circle") {
                 r.expect_words(6, 6, "rock NAME circle X Y RADIUS [mass M]");

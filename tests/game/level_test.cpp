@@ -164,10 +164,14 @@ TEST(Level, MassPropsAndBlobs) {
 
 TEST(LevelErrors, MassPropsAndBlobs) {
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 0"), "l.level:4:26: expected a positive mass, got '0'");
-    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 2000"), "l.level:4:26: expected a mass of at most 1000");
-    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS [mass M]'");
-    // A misspelt 'mass' is two words too many: the form says what may follow the radius.
-    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mas 4"), "l.level:4:21: expected 'rock NAME circle X Y RADIUS [mass M]'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 2000"), "l.level:4:26: expected a mass of at most 1000, got '2000'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass heavy"), "l.level:4:26: expected a positive mass, got 'heavy'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass"), "l.level:4:25: expected a mass after 'mass'");
+    EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 mass"), "l.level:4:33: expected a mass after 'mass'");
+    // A misspelt 'mass' is named as such, after a circle and after a polygon's vertices (where
+    // it is not "expected a coordinate").
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mas 4"), "l.level:4:21: expected 'mass M' or a number, got 'mas'");
+    EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 weight 4"), "l.level:4:29: expected 'mass M' or a number, got 'weight'");
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 mas"),
               "l.level:4:29: expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs [mass M]'");
     EXPECT_EQ(error_of_line("prop t tree 1"), "l.level:4:14: expected 'prop NAME SPRITE X Y'");
@@ -309,7 +313,10 @@ TEST(LevelErrors, NumbersTooBigNotFiniteOrNotPositive) {
     EXPECT_EQ(error_of_line("wall w 0 0 1e39 8"), number(12, "1e39"));
     EXPECT_EQ(error_of_line("pickup p nan 1 2"), number(10, "nan"));
     EXPECT_EQ(error_of_line("pickup p 1 inf 2"), number(12, "inf"));
-    EXPECT_EQ(error_of_line("pickup p 1 2 x"), number(14, "x"));
+    // A length is said as one: a positive radius, of at most 1e5.
+    EXPECT_EQ(error_of_line("pickup p 1 2 x"), "l.level:4:14: expected a positive radius, got 'x'");
+    EXPECT_EQ(error_of_line("pickup p 1 2 2e5"), "l.level:4:14: expected a radius of at most 1e5, got '2e5'");
+    EXPECT_EQ(error_of_line("crate c 1 2 inf 4 0"), "l.level:4:13: expected a width of at most 1e5, got 'inf'");
     EXPECT_EQ(error_of_line("wall w 0 0 100001 8"), number(12, "100001"));
     EXPECT_EQ(error_of_line("rock r poly 0 0 0 0 1e5 0 0 100000.01"), number(29, "100000.01"));
     EXPECT_EQ(error_of_line("crate c 1 2 3 4 0.5rad"), "l.level:4:17: expected a number from -1e6 to 1e6, got '0.5rad'");
