@@ -132,6 +132,39 @@ TEST_F(AtomicFileTest, APipeIsWrittenInPlaceNotReplaced) {
     EXPECT_TRUE(fs::is_fifo(fifo));
 }
 
+// A link to such a name (out.scn -> /dev/stdout, made by the user), a link to that link, and a
+// name in a linked folder (d -> /dev/fd, then d/N) are that descriptor too: followed to the
+// file behind it, they were replaced by name, losing what `>>` had kept there.
+TEST_F(AtomicFileTest, ALinkToADescriptorNameIsThatDescriptor) {
+    const int fd = ::open(path("log.txt").c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::write(fd, "kept\n", 5), 5);
+    fs::create_symlink("/dev/fd/" + std::to_string(fd), path("out.scn"));
+    fs::create_symlink("out.scn", path("again.scn"));
+    fs::create_directory_symlink("/dev/fd", path("d"));
+    for (const std::string& name : {path("out.scn"), path("again.scn"), path("d") + "/" + std::to_string(fd)}) {
+        AtomicFile file(name);
+        EXPECT_TRUE(file.in_place()) << name;
+        file.write(fs::path(name).filename().string() + "\n");
+        file.commit();
+        EXPECT_TRUE(same_file(name, "/dev/fd/" + std::to_string(fd))) << name;
+    }
+    ::close(fd);
+    EXPECT_EQ(read_text(path("log.txt")), "kept\nout.scn\nagain.scn\n" + std::to_string(fd) + "\n");
+    EXPECT_TRUE(fs::is_symlink(path("out.scn")));
+    // A link to a plain file is still replaced through the link, and a loop of links is no
+    // descriptor (it is replaced, as a dangling link is).
+    fs::create_symlink("log.txt", path("plain.scn"));
+    write_file_atomic(path("plain.scn"), "replaced\n");
+    EXPECT_EQ(read_text(path("log.txt")), "replaced\n");
+    EXPECT_TRUE(fs::is_symlink(path("plain.scn")));
+    fs::create_symlink("loop_b", path("loop_a"));
+    fs::create_symlink("loop_a", path("loop_b"));
+    EXPECT_FALSE(same_file(path("loop_a"), "/dev/stdout"));
+    write_file_atomic(path("loop_a"), "x");
+    EXPECT_EQ(read_text(path("loop_a")), "x");
+}
+
 // A path that stands for a descriptor of this process (/dev/stdout is /dev/fd/1) goes through
 // that descriptor, at its offset and with its O_APPEND, in order with the other writes to it:
 // opened again, it started at offset 0 of the file behind it and overwrote what was there

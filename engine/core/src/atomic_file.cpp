@@ -46,12 +46,10 @@ Target target_of(const std::string& path, std::string& resolved) {
     return Target::replaceable;
 }
 
-// The descriptor of this process that `path` stands for (/dev/stdout, /dev/fd/N,
-// /proc/self/fd/N, /proc/<our pid>/fd/N), else -1. Opening such a path again would make a new
-// open file: at offset 0 of a redirected stdout (overwriting what is there and what the
-// program prints next), and without its O_APPEND (`>>`).
-int own_descriptor(const std::string& path) {
-    const std::string p = std::filesystem::path(path).lexically_normal().string();
+// The descriptor that `path`, spelt out, names (/dev/stdout, /dev/fd/N, /proc/self/fd/N,
+// /proc/<our pid>/fd/N), else -1.
+int descriptor_named(const std::filesystem::path& path) {
+    const std::string p = path.lexically_normal().string();
     if (p == "/dev/stdin") return 0;
     if (p == "/dev/stdout") return 1;
     if (p == "/dev/stderr") return 2;
@@ -62,6 +60,32 @@ int own_descriptor(const std::string& path) {
     }
     if (number.empty() || number.size() > 9 || number.find_first_not_of("0123456789") != std::string_view::npos) return -1;
     return std::stoi(std::string(number));
+}
+
+// The descriptor of this process that `path` stands for, else -1: one of the names above, or
+// a link to one (out.scn -> /dev/stdout), or a name in a folder that is one (a link to /dev).
+// Opening such a path again would make a new open file: at offset 0 of a redirected stdout
+// (overwriting what is there and what the program prints next), and without its O_APPEND
+// (`>>`). The links are followed one at a time: the last one, /proc/self/fd/N, names the
+// descriptor's file, which is what must not be opened.
+int own_descriptor(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::path p = fs::absolute(path, ec);
+    if (ec) return -1;
+    for (int hop = 0; hop < 40; ++hop) {  // 40: the kernel's own limit on links in a path
+        if (const int fd = descriptor_named(p); fd >= 0) return fd;
+        // The folder spelt out without links ("/dev/fd" is "/proc/<pid>/fd"), the name kept.
+        const fs::path folder = fs::canonical(p.parent_path(), ec);
+        if (ec) return -1;
+        p = folder / p.filename();
+        if (const int fd = descriptor_named(p); fd >= 0) return fd;
+        if (!fs::is_symlink(fs::symlink_status(p, ec)) || ec) return -1;
+        const fs::path target = fs::read_symlink(p, ec);
+        if (ec) return -1;
+        p = target.is_absolute() ? target : folder / target;
+    }
+    return -1;
 }
 
 // Sends what the program has printed to descriptor fd so far (std::cout's buffer and C's),
