@@ -141,6 +141,19 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             return usage(err, "--report: '" + report + "' " + folder + "; give another folder");
         }
         const std::vector<std::string> all_scenarios = collect_scenarios(paths);
+        if (update) {
+            // Screenshot goldens (NAME.tick_T.png) written there would be new sprites of the
+            // game, read into every level's hash: said before the run, nothing written.
+            for (const std::string& scenario : all_scenarios) {
+                const fs::path folder = fs::path(scenario).parent_path().empty() ? fs::path(".") : fs::path(scenario).parent_path();
+                std::error_code ec;
+                if (fs::equivalent(folder, fs::path(assets) / "sprites", ec)) {
+                    return usage(err, "--update: the scenario '" + scenario +
+                                          "' is in the sprites folder of the assets, where its screenshot goldens would be new "
+                                          "sprites; give it a folder of its own");
+                }
+            }
+        }
         if (!report.empty()) {
             // The report's images and pages among goldens would be mistaken for them, or
             // committed with them: a scenario's folder is not a report folder.

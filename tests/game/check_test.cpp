@@ -313,6 +313,27 @@ TEST_F(Check, AReportFolderThatIsTheAssetsSpritesFolderIsRefused) {
     EXPECT_EQ(listing(assets / "sprites"), sprites);
 }
 
+// An update of a scenario kept in the assets' sprites folder is refused before the run: its
+// screenshot goldens would be new sprites of the game. A plain check writes nothing there.
+TEST_F(Check, AnUpdateOfAScenarioInTheAssetsSpritesFolderIsRefused) {
+    const fs::path assets = path("assets");
+    fs::create_directories(assets);
+    fs::copy(fs::path(kAssets) / "levels", assets / "levels");
+    fs::copy(fs::path(kAssets) / "sprites", assets / "sprites");
+    const std::string s = scenario("drive.scn", kDrive, assets / "sprites");
+    const std::vector<std::string> sprites = listing(assets / "sprites");
+    RunResult r = test::run_jostle_binary({"check", "--assets", assets.string(), "--update", s});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "jostle check: --update: the scenario '" + s +
+                         "' is in the sprites folder of the assets, where its screenshot goldens would be new sprites; "
+                         "give it a folder of its own\nRun 'jostle check --help' for usage.\n");
+    EXPECT_EQ(listing(assets / "sprites"), sprites);
+    r = test::run_jostle_binary({"check", "--assets", assets.string(), s});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(listing(assets / "sprites"), sprites);
+}
+
 // The hints give the command that does what they say: this scenario's path as it was given
 // (single-quoted when it needs it, after '--' when it starts with '-'), and --assets when it was
 // given. The command creates the goldens run by sh -c, and typed into an interactive bash,
