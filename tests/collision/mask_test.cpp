@@ -477,14 +477,14 @@ TEST(MaskDifferential, EveryShiftAcrossWordBoundaries) {
     }
 }
 
-// Every kernel the CPU has (portable, bmi2, avx512: see mask.cpp) against reference:: on
+// Every kernel the CPU has (portable, bmi2, avx2, avx512: see mask.cpp) against reference:: on
 // masks up to 600 wide (rows of 1..10 words, past the 8 lanes of a vector) and 40 tall (row
 // blocks and their remainders), blobby or sparse, at every kind of offset: negative, huge,
 // rectangles sharing one column, one row or one pixel.
 TEST(MaskDifferential, EveryKernelEqualsReference) {
     using detail::MaskKernel;
     std::vector<MaskKernel> kernels{MaskKernel::portable};
-    for (const MaskKernel k : {MaskKernel::bmi2, MaskKernel::avx512})
+    for (const MaskKernel k : {MaskKernel::bmi2, MaskKernel::avx2, MaskKernel::avx512})
         if (static_cast<int>(k) <= static_cast<int>(detail::best_mask_kernel())) kernels.push_back(k);
     Rng rng(0x6b65726eull);
     const std::array<int, 12> special{1, 2, 63, 64, 65, 127, 128, 129, 511, 512, 513, 600};
@@ -547,7 +547,7 @@ TEST(MaskDifferential, EqualStridesInEveryKernel) {
         const PlacedMask pa{&a, pb.x + uniform_int(rng, -wa, wb), pb.y + uniform_int(rng, -ha, hb)};
         const int count = reference::count_overlap(pa, pb);
         const std::optional<Pixel> first = reference::first_overlap(pa, pb);
-        for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx512}) {
+        for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx2, MaskKernel::avx512}) {
             ASSERT_EQ(detail::count_overlap(pa, pb, k), count) << "case " << n;
             ASSERT_EQ(detail::overlaps(pb, pa, k), count > 0) << "case " << n;
             ASSERT_EQ(detail::first_overlap(pa, pb, k), first) << "case " << n;
@@ -561,7 +561,7 @@ void expect_kernels_agree(const PlacedMask& pa, const PlacedMask& pb, const std:
     using detail::MaskKernel;
     const int count = reference::count_overlap(pa, pb);
     const std::optional<Pixel> first = reference::first_overlap(pa, pb);
-    for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx512}) {
+    for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx2, MaskKernel::avx512}) {
         const std::string at = where + " kernel " + std::to_string(static_cast<int>(k));
         ASSERT_EQ(detail::overlaps(pa, pb, k), count > 0) << at;
         ASSERT_EQ(detail::overlaps(pb, pa, k), count > 0) << at;
@@ -583,7 +583,8 @@ Mask checkerboard(int w, int h, int x, int y, int parity) {
 }
 
 // Two masks of the same words per row, 1..8 (the AVX-512 kernel packs 8 / stride rows a vector
-// for strides 1, 2, 4 and 8 and reads the first vector without a load mask, up into the clear
+// for strides 1, 2, 4 and 8 and reads the first vector without a load mask, and the AVX2 one
+// reads 8 words a step without one, up into the clear
 // words after a mask's last row), at x offsets across the whole width and word boundaries, with
 // 1..9 shared rows that end at a mask's last row or start at its first: random masks, sparse
 // or dense, and checkerboards that never share a pixel.
@@ -630,7 +631,7 @@ TEST(MaskDifferential, EmptyMasksMissInEveryKernel) {
     const Mask none;
     const Mask clear(200, 30);
     const Mask flat(100, 0);
-    for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx512}) {
+    for (const MaskKernel k : {MaskKernel::portable, MaskKernel::bmi2, MaskKernel::avx2, MaskKernel::avx512}) {
         for (const Mask* m : {&none, &clear, &flat}) {
             const PlacedMask pa{&full, 1, 1}, pb{m, 0, 0};
             EXPECT_FALSE(detail::overlaps(pa, pb, k));

@@ -480,6 +480,8 @@ Offset last_row_first_shared(const SharedWords& s) {
 //   portable  baseline x86-64 (or any other machine): std::popcount is a libgcc call there
 //   bmi2      POPCNT, TZCNT and BMI2's shifts by any register (the join's two shifts need no
 //             shuffling through CL)
+//   avx2      bmi2, and two masks of the same 1, 2, 4 or 8 words per row read 8 words a step
+//             in two 256-bit vectors, one branch a step, for yes/no and the first pixel
 //   avx512    bmi2, and VPSHRDVQ (VBMI2) joining 8 word pairs in one instruction, VPOPCNTQ
 //             counting them: 8 / stride rows a vector for two masks of the same 1, 2, 4 or 8
 //             words per row, else 8 one-chunk rows or one row of 2..8 chunks a vector.
@@ -493,6 +495,7 @@ using MaskKernel = detail::MaskKernel;
 #if defined(__x86_64__) && defined(__GNUC__)
 #define JOSTLE_MASK_X86_KERNELS 1
 #define JOSTLE_BMI2 "popcnt,bmi,bmi2"
+#define JOSTLE_AVX2_MASKS "popcnt,bmi,bmi2,avx,avx2"
 #define JOSTLE_AVX512 "popcnt,bmi,bmi2,avx2,avx512f,avx512vl,avx512bw,avx512dq,avx512vpopcntdq,avx512vbmi2"
 
 // A shared row of 2..8 chunks as one vector: lane i is chunk i (lanes past the row are 0).
@@ -769,6 +772,118 @@ template <int kS>
 }
 #endif
 
+#ifdef JOSTLE_MASK_X86_KERNELS
+// The avx2 kernels (CPUs without AVX-512: AMD's Zen 1-3, Intel's client cores before Ice Lake):
+// two masks of the same stride of kS = 1, 2, 4 or 8 words, read as the AVX-512 packed kernels
+// read them (rows kS words apart in both masks, so word `at` of the shared rows is P's word
+// at and O's words at, at + 1 joined), 8 words a step in two 4-lane vectors and one branch a
+// step: 8 rows of a 64 px pair, 4 of a 128 px one. A lane's column mask (~0, the tail, or 0
+// past the shared chunks) repeats every step (kS divides 8); lanes past the shared rows' last
+// word are masked by comparing their index with it. The loads are not masked: a step reads at
+// most 8 words (and one) past a shared row's start, which lie in the mask's storage or its clear
+// words after the last row (kPadWords), and what they read outside the shared rows is masked.
+// A vector shift by 64 or more gives 0, so the join needs no special case for shift 0.
+struct Avx2Step {
+    __m256i cols0, cols1;  // the column masks of a step's two vectors
+    __m256i shift_lo;      // s.shift in lane 0 (the vector shifts' count operand)
+    __m256i shift_hi;      // 64 - s.shift
+};
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline __m256i avx2_columns(const SharedWords& s, int first_lane) {
+    // Lane j holds chunk (first_lane + j) % kS of its row: ~0 before the row's last shared
+    // chunk, the tail at it, 0 after it.
+    const __m256i chunk = _mm256_and_si256(_mm256_add_epi64(_mm256_set1_epi64x(first_lane), _mm256_set_epi64x(3, 2, 1, 0)),
+                                           _mm256_set1_epi64x(kS - 1));
+    const __m256i last = _mm256_set1_epi64x(s.words - 1);
+    const __m256i before = _mm256_cmpgt_epi64(last, chunk);
+    const __m256i at_last = _mm256_and_si256(_mm256_cmpeq_epi64(last, chunk), _mm256_set1_epi64x(static_cast<long long>(s.tail)));
+    return _mm256_or_si256(before, at_last);
+}
+
+// P AND the joined O for the 4 words from `at` on, the column mask applied.
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline __m256i avx2_and(const SharedWords& s, const Avx2Step& v, int at,
+                                                                                __m256i cols) {
+    const __m256i pw = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s.p + at));
+    const __m256i lo = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s.o + at));
+    const __m256i hi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s.o + at + 1));
+    const __m256i joined = _mm256_or_si256(_mm256_srl_epi64(lo, _mm256_castsi256_si128(v.shift_lo)),
+                                           _mm256_sll_epi64(hi, _mm256_castsi256_si128(v.shift_hi)));
+    return _mm256_and_si256(_mm256_and_si256(pw, joined), cols);
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline Avx2Step avx2_step(const SharedWords& s) {
+    static_assert(kS == 1 || kS == 2 || kS == 4 || kS == 8);
+    return {avx2_columns<kS>(s, 0), avx2_columns<kS>(s, 4), _mm256_castsi128_si256(_mm_cvtsi32_si128(s.shift)),
+            _mm256_castsi128_si256(_mm_cvtsi32_si128(64 - s.shift))};
+}
+
+// Lanes whose word index (at + lane) is below `words` (the shared rows' words): ~0, else 0.
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline __m256i avx2_below(__m256i words, __m256i index) {
+    return _mm256_cmpgt_epi64(words, index);
+}
+
+// The first step with a shared pixel: its first word (in the shared rows) and its two vectors,
+// lanes past the shared rows cleared; or -1. One branch a step.
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline int first_step_avx2(const SharedWords& s, __m256i& w0, __m256i& w1) {
+    const Avx2Step v = avx2_step<kS>(s);
+    const int words = s.rows * kS;
+    const __m256i limit = _mm256_set1_epi64x(words);
+    __m256i index0 = _mm256_set_epi64x(3, 2, 1, 0);
+    __m256i index1 = _mm256_set_epi64x(7, 6, 5, 4);
+    const __m256i eight = _mm256_set1_epi64x(8);
+    for (int at = 0; at < words; at += 8) {
+        w0 = _mm256_and_si256(avx2_and(s, v, at, v.cols0), avx2_below(limit, index0));
+        w1 = _mm256_and_si256(avx2_and(s, v, at + 4, v.cols1), avx2_below(limit, index1));
+        const __m256i any = _mm256_or_si256(w0, w1);
+        if (_mm256_testz_si256(any, any) == 0) return at;
+        index0 = _mm256_add_epi64(index0, eight);
+        index1 = _mm256_add_epi64(index1, eight);
+    }
+    return -1;
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline bool any_avx2(const SharedWords& s) {
+    __m256i w0, w1;
+    return first_step_avx2<kS>(s, w0, w1) >= 0;
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline FirstPixel first_avx2(const SharedWords& s) {
+    __m256i w0, w1;
+    const int at = first_step_avx2<kS>(s, w0, w1);
+    if (at < 0) return {0, 0};
+    // The lowest lane with a shared pixel (lanes run in reading order), and its lowest bit.
+    const __m256i zero = _mm256_setzero_si256();
+    const auto empty0 = static_cast<unsigned>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(w0, zero))));
+    const auto empty1 = static_cast<unsigned>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(w1, zero))));
+    const int lane = std::countr_zero(~(empty0 | empty1 << 4));
+    // The lane's word moved to lane 0 by a permute, not read back from memory: a local array of
+    // 8 words gets 32-byte alignment, and GCC 12 then realigns the stack on every call.
+    const __m256i half = _mm256_blendv_epi8(w0, w1, _mm256_set1_epi64x(-static_cast<long long>(lane >> 2)));
+    const __m256i pick = _mm256_add_epi32(_mm256_set1_epi32(2 * (lane & 3)), _mm256_set_epi32(1, 0, 1, 0, 1, 0, 1, 0));
+    const auto bits = static_cast<u64>(_mm_cvtsi128_si64(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(half, pick))));
+    const int word = at + lane;
+    const int col = 64 * (word % kS) + std::countr_zero(bits);
+    const auto x = static_cast<std::uint32_t>(s.x0 + col), y = static_cast<std::uint32_t>(s.y0 + word / kS);
+    return {x | u64{y} << 32, 1};
+}
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS)]] bool any_avx2_packed(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return share_words<kS>(a, b, s) && any_avx2<kS>(s);
+}
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS)]] FirstPixel first_avx2_packed(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return share_words<kS>(a, b, s) ? first_avx2<kS>(s) : FirstPixel{0, 0};
+}
+#endif
+
 // The kernels: each one a whole query on two present masks. The portable and bmi2 ones are the
 // code above, compiled for their [[gnu::target]]s.
 bool any_portable(const PlacedMask& a, const PlacedMask& b) {
@@ -868,8 +983,9 @@ bool cpu_has(MaskKernel k) {
     case MaskKernel::portable: return true;
     case MaskKernel::bmi2:
         return __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
+    case MaskKernel::avx2: return cpu_has(MaskKernel::bmi2) && __builtin_cpu_supports("avx") && __builtin_cpu_supports("avx2");
     case MaskKernel::avx512:
-        return cpu_has(MaskKernel::bmi2) && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") &&
+        return cpu_has(MaskKernel::avx2) && __builtin_cpu_supports("avx512f") &&
                __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
                __builtin_cpu_supports("avx512vpopcntdq") && __builtin_cpu_supports("avx512vbmi2");
     }
@@ -902,14 +1018,21 @@ constexpr Kernels kPacked{any_vector_packed<kS>, first_vector_packed<kS>, count_
 constexpr Kernels kOther{any_vector_other, first_vector_other, count_vector_other};
 constexpr std::array<Kernels, 9> kVector{kOther, kPacked<1>, kPacked<2>, kOther, kPacked<4>,
                                          kOther, kOther,     kOther,     kPacked<8>};
+// The avx2 kernel: yes/no and first pixel packed by stride as above; the count, and every other
+// pair, the bmi2 code (AVX2 has no vector popcount, and the count rows are met without it).
+template <int kS>
+constexpr Kernels kAvx2Packed{any_avx2_packed<kS>, first_avx2_packed<kS>, count_bmi2};
+constexpr std::array<Kernels, 9> kAvx2{kBmi2, kAvx2Packed<1>, kAvx2Packed<2>, kBmi2, kAvx2Packed<4>,
+                                       kBmi2, kBmi2,          kBmi2,          kAvx2Packed<8>};
 #endif
 
 // The queries of kernel k (one the CPU has) for two present masks.
 inline const Kernels& kernels_for(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
 #ifdef JOSTLE_MASK_X86_KERNELS
-    if (k == MaskKernel::avx512) {
+    if (k >= MaskKernel::avx2) {
         const auto stride = static_cast<unsigned>(a.mask->words_per_row());
-        return kVector[stride == static_cast<unsigned>(b.mask->words_per_row()) && stride <= 8 ? stride : 0];
+        const unsigned entry = stride == static_cast<unsigned>(b.mask->words_per_row()) && stride <= 8 ? stride : 0;
+        return k == MaskKernel::avx512 ? kVector[entry] : kAvx2[entry];
     }
     if (k == MaskKernel::bmi2) return kBmi2;
 #endif

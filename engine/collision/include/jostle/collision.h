@@ -527,7 +527,7 @@ namespace detail {
 // The mask-pair queries run one of these kernels, the best the CPU has (chosen at run time;
 // all give the same answers). For tests: run a given one; one the CPU lacks falls back to the
 // best it has below it.
-enum class MaskKernel { portable, bmi2, avx512 };
+enum class MaskKernel { portable, bmi2, avx2, avx512 };
 MaskKernel best_mask_kernel();
 bool overlaps(const PlacedMask& a, const PlacedMask& b, MaskKernel k);
 std::optional<Pixel> first_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k);
