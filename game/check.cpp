@@ -50,6 +50,8 @@ options:
   --update          re-bless the goldens of every scenario that differs, and print what
                     changed. All new files are written first and renamed together, so an
                     interrupted update changes nothing. Missing goldens are created only so.
+                    Not of a scenario in the assets' sprites folder (a golden image there
+                    would be a sprite)
   --report DIR      write DIR/report.html (each failing scenario with its expected, actual
                     and diff images side by side) and DIR/junit.xml (every scenario); not
                     a folder of the scenarios checked (it would mix with goldens) nor the
@@ -141,18 +143,18 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             return usage(err, "--report: '" + report + "' " + folder + "; give another folder");
         }
         const std::vector<std::string> all_scenarios = collect_scenarios(paths);
-        if (update) {
-            // Screenshot goldens (NAME.tick_T.png) written there would be new sprites of the
-            // game, read into every level's hash: said before the run, nothing written.
-            for (const std::string& scenario : all_scenarios) {
-                const fs::path folder = fs::path(scenario).parent_path().empty() ? fs::path(".") : fs::path(scenario).parent_path();
-                std::error_code ec;
-                if (fs::equivalent(folder, fs::path(assets) / "sprites", ec)) {
-                    return usage(err, "--update: the scenario '" + scenario +
-                                          "' is in the sprites folder of the assets, where its screenshot goldens would be new "
-                                          "sprites; give it a folder of its own");
-                }
-            }
+        // Screenshot goldens (NAME.tick_T.png) written into the assets' sprites folder would be
+        // new sprites of the game, read into every level's hash: an update there is refused
+        // before the run, and a plain check says so beside the hints that name an update.
+        for (const std::string& scenario : all_scenarios) {
+            const fs::path folder = fs::path(scenario).parent_path().empty() ? fs::path(".") : fs::path(scenario).parent_path();
+            std::error_code ec;
+            if (!fs::equivalent(folder, fs::path(assets) / "sprites", ec)) continue;
+            const std::string why = "the scenario '" + scenario +
+                                    "' is in the sprites folder of the assets, where its goldens do not belong (a golden "
+                                    "image there would be a sprite); give it a folder of its own";
+            if (update) return usage(err, "--update: " + why);
+            err << "jostle check: note: " << why << " (--update refuses it)\n";
         }
         if (!report.empty()) {
             // The report's images and pages among goldens would be mistaken for them, or

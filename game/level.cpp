@@ -47,9 +47,11 @@ public:
     // A positive length or speed (a radius, a width, px/s): 0 < v <= limit (kMaxCoordinate: a
     // length is a coordinate), said as one ("expected a positive width", not "a coordinate").
     float positive(std::size_t i, const char* what, float limit = kMaxCoordinate, const char* limit_text = "1e5") const {
+        // Read as a double too, so that 1e39 (beyond a float) is too large, not "not positive".
         const std::optional<float> parsed = parse_float(words_[i].text);
+        const std::optional<double> wide = parsed ? std::optional<double>(*parsed) : parse_double(words_[i].text);
         const float v = parsed ? *parsed : std::numeric_limits<float>::quiet_NaN();
-        if (v > limit) {
+        if (wide && *wide > limit) {
             fail(words_[i].column, std::string("expected a ") + what + " of at most " + limit_text + ", got '" +
                                        std::string(words_[i].text) + "'");
         }
@@ -202,14 +204,21 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
         } else if (head == "rock") {
             if (r.size() < 3) r.expect_words(3, 3, "rock NAME circle|poly ...");
             take_name();
-            if (r.size() >= 5 && r.word(r.size() - 2).text == "mass") {
+            const std::string_view shape = r.word(2).text;
+            if (shape != "circle" && shape != "poly") {
+                r.fail(r.word(2).column, "expected 'circle' or 'poly', got '" + std::string(shape) + "'");
+            }
+            // A count of words the shape takes (without a mass): circle X Y RADIUS, poly X Y and pairs.
+            const auto shape_words = [&](std::size_t n) { return shape == "circle" ? n == 6 : n >= 11 && (n - 5) % 2 == 0; };
+            const Word& second_last = r.word(r.size() - 2);
+            if (r.size() >= 5 && second_last.text == "mass") {
                 thing.mass = r.positive(r.size() - 1, "mass", 1000.0f, "1000");
                 words.resize(words.size() - 2);  // the shape's words are checked as if it were not there
-            } else if (const Word& w = r.word(r.size() - 2); r.size() >= 5 && std::isalpha(static_cast<unsigned char>(w.text[0])) != 0 &&
-                                                             !parse_float(w.text) && parse_float(r.word(r.size() - 1).text)) {
-                // "mas 3", "weight 3": a misspelt mass, not a vertex ("expected a coordinate, got 'mas'").
-                r.fail(w.column, "expected 'mass M' or a number, got '" + std::string(w.text) + "'");
-            } else if (const Word& last = r.word(r.size() - 1); r.size() >= 4 && last.text == "mass") {
+            } else if (shape_words(r.size() - 2) && std::isalpha(static_cast<unsigned char>(second_last.text[0])) != 0 &&
+                       !parse_float(second_last.text) && parse_float(r.word(r.size() - 1).text)) {
+                // "mas 3", "weight 3" where a mass may stand: a misspelt mass, not a coordinate.
+                r.fail(second_last.column, "expected 'mass M' or a number, got '" + std::string(second_last.text) + "'");
+            } else if (const Word& last = r.word(r.size() - 1); shape_words(r.size() - 1) && last.text == "mass") {
                 r.fail(last.column + static_cast<int>(last.text.size()), "expected a mass after 'mass'");
             }
             if (r.word(2).text == "circle") {
@@ -234,8 +243,6 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
                 const std::optional<Polygon> polygon = make_polygon(points, &error);
                 if (!polygon) r.fail(r.word(5).column, error);  // "polygon is not convex at vertex 2", ...
                 thing.polygon = *polygon;
-            } else {
-                r.fail(r.word(2).column, "expected 'circle' or 'poly', got '" + std::string(r.word(2).text) + "'");
             }
         } else if (head == "pickup") {
             r.expect_words(5, 5, "pickup NAME X Y RADIUS");

@@ -544,17 +544,28 @@ std::string json_error_message(const Json::exception& e) {
 }
 
 // The 1-based column of the line's n-th key (1-based), or 0. The line is valid JSON up to that
-// key (the parser has just read it), so a key is a string followed by ':'.
+// key (the parser has just read it, maybe before its ':'), so a key is a string directly inside
+// an object that follows its '{' or a ','.
 std::size_t key_column(std::string_view line, int n) {
+    std::vector<char> open;  // the brackets around the current position, innermost last
+    char before = 0;         // the last character outside strings and blanks
     for (std::size_t i = 0; i < line.size(); ++i) {
-        if (line[i] != '"') continue;
-        const std::size_t start = i;
-        for (++i; i < line.size() && line[i] != '"'; ++i) {
-            if (line[i] == '\\') ++i;
+        const char ch = line[i];
+        if (ch == '"') {
+            if (!open.empty() && open.back() == '{' && (before == '{' || before == ',') && --n == 0) return i + 1;
+            for (++i; i < line.size() && line[i] != '"'; ++i) {
+                if (line[i] == '\\') ++i;
+            }
+            before = '"';
+        } else if (ch == '{' || ch == '[') {
+            open.push_back(ch);
+            before = ch;
+        } else if (ch == '}' || ch == ']') {
+            if (!open.empty()) open.pop_back();
+            before = ch;
+        } else if (ch != ' ' && ch != '\t' && ch != '\n' && ch != '\r') {
+            before = ch;
         }
-        std::size_t next = i + 1;
-        while (next < line.size() && (line[next] == ' ' || line[next] == '\t' || line[next] == '\n' || line[next] == '\r')) ++next;
-        if (next < line.size() && line[next] == ':' && --n == 0) return start + 1;
     }
     return 0;
 }

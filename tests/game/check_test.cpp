@@ -325,12 +325,15 @@ TEST_F(Check, AnUpdateOfAScenarioInTheAssetsSpritesFolderIsRefused) {
     RunResult r = test::run_jostle_binary({"check", "--assets", assets.string(), "--update", s});
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(r.out, "");
-    EXPECT_EQ(r.err, "jostle check: --update: the scenario '" + s +
-                         "' is in the sprites folder of the assets, where its screenshot goldens would be new sprites; "
-                         "give it a folder of its own\nRun 'jostle check --help' for usage.\n");
+    const std::string why = "the scenario '" + s +
+                            "' is in the sprites folder of the assets, where its goldens do not belong (a golden image "
+                            "there would be a sprite); give it a folder of its own";
+    EXPECT_EQ(r.err, "jostle check: --update: " + why + "\nRun 'jostle check --help' for usage.\n");
     EXPECT_EQ(listing(assets / "sprites"), sprites);
+    // A plain check runs it, and says beside the hints that an update is refused.
     r = test::run_jostle_binary({"check", "--assets", assets.string(), s});
     EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(r.err, "jostle check: note: " + why + " (--update refuses it)\n");
     EXPECT_EQ(listing(assets / "sprites"), sprites);
 }
 

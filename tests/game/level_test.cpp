@@ -172,6 +172,11 @@ TEST(LevelErrors, MassPropsAndBlobs) {
     // it is not "expected a coordinate").
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mas 4"), "l.level:4:21: expected 'mass M' or a number, got 'mas'");
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 weight 4"), "l.level:4:29: expected 'mass M' or a number, got 'weight'");
+    // Only where a mass may stand: a word in the shape's own place is the shape's error.
+    EXPECT_EQ(error_of_line("rock r circle 1 y 3"), "l.level:4:17: expected a coordinate from -1e5 to 1e5, got 'y'");
+    EXPECT_EQ(error_of_line("rock r circle mass"), "l.level:4:19: expected 'rock NAME circle X Y RADIUS [mass M]'");
+    EXPECT_EQ(error_of_line("rock r box 1 2 mas 4"), "l.level:4:8: expected 'circle' or 'poly', got 'box'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 1e39"), "l.level:4:26: expected a mass of at most 1000, got '1e39'");
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 mas"),
               "l.level:4:29: expected 'rock NAME poly X Y, then 3 to 16 vertices as DX DY pairs [mass M]'");
     EXPECT_EQ(error_of_line("prop t tree 1"), "l.level:4:14: expected 'prop NAME SPRITE X Y'");
@@ -317,6 +322,8 @@ TEST(LevelErrors, NumbersTooBigNotFiniteOrNotPositive) {
     EXPECT_EQ(error_of_line("pickup p 1 2 x"), "l.level:4:14: expected a positive radius, got 'x'");
     EXPECT_EQ(error_of_line("pickup p 1 2 2e5"), "l.level:4:14: expected a radius of at most 1e5, got '2e5'");
     EXPECT_EQ(error_of_line("crate c 1 2 inf 4 0"), "l.level:4:13: expected a width of at most 1e5, got 'inf'");
+    EXPECT_EQ(error_of_line("pickup p 1 2 1e39"), "l.level:4:14: expected a radius of at most 1e5, got '1e39'");
+    EXPECT_EQ(error_of_line("pickup p 1 2 -1e39"), "l.level:4:14: expected a positive radius, got '-1e39'");
     EXPECT_EQ(error_of_line("wall w 0 0 100001 8"), number(12, "100001"));
     EXPECT_EQ(error_of_line("rock r poly 0 0 0 0 1e5 0 0 100000.01"), number(29, "100000.01"));
     EXPECT_EQ(error_of_line("crate c 1 2 3 4 0.5rad"), "l.level:4:17: expected a number from -1e6 to 1e6, got '0.5rad'");

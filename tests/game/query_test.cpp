@@ -423,6 +423,12 @@ TEST(QueryErrors, AKeyGivenTwiceInAnObjectIsRefused) {
     // the colon) are not counted; an escaped spelling of a key is that key.
     const std::string tricky = R"({"op":"lines", "a" :[[0,0],[1,1]],"b":[[0,1],[1,0]],"x":{"s":"\":\" :"}, "o\u0070" : 1})";
     EXPECT_EQ(error_of(tricky), "line 1: " + message("op", tricky.find("\"o\\u0070\"") + 1));
+    // The parser stops at the repeated key, before its ':' (which may be missing); keys in arrays
+    // of objects and values in arrays are counted right.
+    EXPECT_EQ(error_of(R"({"op":"lines","op"})"), "line 1: " + message("op", 15));
+    EXPECT_EQ(error_of(R"({"op":"lines","op" "x":1})"), "line 1: " + message("op", 15));
+    const std::string nested = R"({"a":[{"x":1},"y",{"y":2,"y":3}]})";
+    EXPECT_EQ(error_of(nested), "line 1: " + message("y", nested.rfind("\"y\"") + 1));
     // The same key in different objects, or as a value, is no duplicate.
     EXPECT_EQ(answer(collide(circle_at("[0,0]", "1"), circle_at("[1.5,0]", "1"))), R"({"hit":true,"depth":0.5,"normal":[1,0],"mtd":[-0.5,0]})");
     EXPECT_THAT(error_of(R"({"op":"lines","a":[[0,0],[1,1]],"b":[[0,1],[1,0]],"x":{"op":1,"y":{"op":"op"}}})"),

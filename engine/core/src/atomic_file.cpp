@@ -54,9 +54,20 @@ int descriptor_named(const std::filesystem::path& path) {
     if (p == "/dev/stdout") return 1;
     if (p == "/dev/stderr") return 2;
     std::string_view number;
+    const std::string own = "/proc/" + std::to_string(::getpid());
     for (const std::string& folder : {std::string("/dev/fd/"), std::string("/proc/self/fd/"), std::string("/proc/thread-self/fd/"),
-                                      "/proc/" + std::to_string(::getpid()) + "/fd/"}) {
+                                      own + "/fd/"}) {
         if (p.starts_with(folder)) number = std::string_view(p).substr(folder.size());
+    }
+    // A thread's folder, /proc/<pid>/task/<tid>/fd/N (what /proc/thread-self/fd spells out to):
+    // threads share their process's descriptors.
+    if (const std::string task = own + "/task/"; number.empty() && p.starts_with(task)) {
+        const std::string_view rest = std::string_view(p).substr(task.size());
+        const std::size_t slash = rest.find('/');
+        if (slash != std::string_view::npos && slash > 0 && rest.substr(0, slash).find_first_not_of("0123456789") == std::string_view::npos &&
+            rest.substr(slash).starts_with("/fd/")) {
+            number = rest.substr(slash + 4);
+        }
     }
     if (number.empty() || number.size() > 9 || number.find_first_not_of("0123456789") != std::string_view::npos) return -1;
     return std::stoi(std::string(number));
