@@ -481,7 +481,7 @@ Offset last_row_first_shared(const SharedWords& s) {
 //   bmi2      POPCNT, TZCNT and BMI2's shifts by any register (the join's two shifts need no
 //             shuffling through CL)
 //   avx2      bmi2, and two masks of the same 1, 2, 4 or 8 words per row read 8 words a step
-//             in two 256-bit vectors, one branch a step, for yes/no and the first pixel
+//             in two 256-bit vectors, one branch a step (counted by a nibble table)
 //   avx512    bmi2, and VPSHRDVQ (VBMI2) joining 8 word pairs in one instruction, VPOPCNTQ
 //             counting them: 8 / stride rows a vector for two masks of the same 1, 2, 4 or 8
 //             words per row, else 8 one-chunk rows or one row of 2..8 chunks a vector.
@@ -777,7 +777,7 @@ template <int kS>
 // two masks of the same stride of kS = 1, 2, 4 or 8 words, read as the AVX-512 packed kernels
 // read them (rows kS words apart in both masks, so word `at` of the shared rows is P's word
 // at and O's words at, at + 1 joined), 8 words a step in two 4-lane vectors and one branch a
-// step: 8 rows of a 64 px pair, 4 of a 128 px one. A lane's column mask (~0, the tail, or 0
+// step: 8 rows of a 64 px pair, 4 of a 128 px one (the count: no branch but the loop's). A lane's column mask (~0, the tail, or 0
 // past the shared chunks) repeats every step (kS divides 8); lanes past the shared rows' last
 // word are masked by comparing their index with it. The loads are not masked: a step reads at
 // most 8 words (and one) past a shared row's start, which lie in the mask's storage or its clear
@@ -824,25 +824,65 @@ template <int kS>
     return _mm256_cmpgt_epi64(words, index);
 }
 
-// The first step with a shared pixel: its first word (in the shared rows) and its two vectors,
-// lanes past the shared rows cleared; or -1. One branch a step.
+// A scan of the shared rows' words, 8 a step: the step's constants and its lanes' word indexes.
+struct Avx2Scan {
+    Avx2Step v;
+    int words;      // the shared rows' words, rows * kS
+    __m256i limit;  // words, in every lane
+    __m256i index0, index1;
+};
+
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline Avx2Scan avx2_scan(const SharedWords& s) {
+    return {avx2_step<kS>(s), s.rows * kS, _mm256_set1_epi64x(s.rows * kS), _mm256_set_epi64x(3, 2, 1, 0),
+            _mm256_set_epi64x(7, 6, 5, 4)};
+}
+
+// The step at `at` (the scan's indexes at it): two vectors, lanes past the shared rows cleared;
+// then the indexes move on to the next step.
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline void avx2_words(const SharedWords& s, Avx2Scan& c, int at,
+                                                                               __m256i& w0, __m256i& w1) {
+    w0 = _mm256_and_si256(avx2_and(s, c.v, at, c.v.cols0), avx2_below(c.limit, c.index0));
+    w1 = _mm256_and_si256(avx2_and(s, c.v, at + 4, c.v.cols1), avx2_below(c.limit, c.index1));
+    c.index0 = _mm256_add_epi64(c.index0, _mm256_set1_epi64x(8));
+    c.index1 = _mm256_add_epi64(c.index1, _mm256_set1_epi64x(8));
+}
+
+// The first step with a shared pixel: its first word (in the shared rows) and its two vectors;
+// or -1. One branch a step.
 template <int kS>
 [[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline int first_step_avx2(const SharedWords& s, __m256i& w0, __m256i& w1) {
-    const Avx2Step v = avx2_step<kS>(s);
-    const int words = s.rows * kS;
-    const __m256i limit = _mm256_set1_epi64x(words);
-    __m256i index0 = _mm256_set_epi64x(3, 2, 1, 0);
-    __m256i index1 = _mm256_set_epi64x(7, 6, 5, 4);
-    const __m256i eight = _mm256_set1_epi64x(8);
-    for (int at = 0; at < words; at += 8) {
-        w0 = _mm256_and_si256(avx2_and(s, v, at, v.cols0), avx2_below(limit, index0));
-        w1 = _mm256_and_si256(avx2_and(s, v, at + 4, v.cols1), avx2_below(limit, index1));
+    Avx2Scan c = avx2_scan<kS>(s);
+    for (int at = 0; at < c.words; at += 8) {
+        avx2_words(s, c, at, w0, w1);
         const __m256i any = _mm256_or_si256(w0, w1);
         if (_mm256_testz_si256(any, any) == 0) return at;
-        index0 = _mm256_add_epi64(index0, eight);
-        index1 = _mm256_add_epi64(index1, eight);
     }
     return -1;
+}
+
+// The set bits of each byte (a table lookup per nibble: AVX2 has no vector popcount).
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline __m256i byte_popcounts(__m256i v) {
+    const __m256i table = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4);
+    const __m256i nibble = _mm256_set1_epi8(0x0f);
+    return _mm256_add_epi8(_mm256_shuffle_epi8(table, _mm256_and_si256(v, nibble)),
+                           _mm256_shuffle_epi8(table, _mm256_and_si256(_mm256_srli_epi16(v, 4), nibble)));
+}
+
+// Every shared pixel: per step, the two vectors' byte counts added (at most 16 a byte) and
+// summed into the four lanes by VPSADBW.
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline int count_avx2(const SharedWords& s) {
+    Avx2Scan c = avx2_scan<kS>(s);
+    __m256i sum = _mm256_setzero_si256();
+    for (int at = 0; at < c.words; at += 8) {
+        __m256i w0, w1;
+        avx2_words(s, c, at, w0, w1);
+        const __m256i bytes = _mm256_add_epi8(byte_popcounts(w0), byte_popcounts(w1));
+        sum = _mm256_add_epi64(sum, _mm256_sad_epu8(bytes, _mm256_setzero_si256()));
+    }
+    const __m128i half = _mm_add_epi64(_mm256_castsi256_si128(sum), _mm256_extracti128_si256(sum, 1));
+    return static_cast<int>(_mm_cvtsi128_si64(half) + _mm_extract_epi64(half, 1));
 }
 
 template <int kS>
@@ -881,6 +921,11 @@ template <int kS>
 [[gnu::target(JOSTLE_AVX2_MASKS)]] FirstPixel first_avx2_packed(const PlacedMask& a, const PlacedMask& b) {
     SharedWords s;
     return share_words<kS>(a, b, s) ? first_avx2<kS>(s) : FirstPixel{0, 0};
+}
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS)]] int count_avx2_packed(const PlacedMask& a, const PlacedMask& b) {
+    SharedWords s;
+    return share_words<kS>(a, b, s) ? count_avx2<kS>(s) : 0;
 }
 #endif
 
@@ -1018,10 +1063,9 @@ constexpr Kernels kPacked{any_vector_packed<kS>, first_vector_packed<kS>, count_
 constexpr Kernels kOther{any_vector_other, first_vector_other, count_vector_other};
 constexpr std::array<Kernels, 9> kVector{kOther, kPacked<1>, kPacked<2>, kOther, kPacked<4>,
                                          kOther, kOther,     kOther,     kPacked<8>};
-// The avx2 kernel: yes/no and first pixel packed by stride as above; the count, and every other
-// pair, the bmi2 code (AVX2 has no vector popcount, and the count rows are met without it).
+// The avx2 kernel: packed by stride as above; every other pair takes the bmi2 code.
 template <int kS>
-constexpr Kernels kAvx2Packed{any_avx2_packed<kS>, first_avx2_packed<kS>, count_bmi2};
+constexpr Kernels kAvx2Packed{any_avx2_packed<kS>, first_avx2_packed<kS>, count_avx2_packed<kS>};
 constexpr std::array<Kernels, 9> kAvx2{kBmi2, kAvx2Packed<1>, kAvx2Packed<2>, kBmi2, kAvx2Packed<4>,
                                        kBmi2, kBmi2,          kBmi2,          kAvx2Packed<8>};
 #endif
