@@ -1085,7 +1085,11 @@ double time_mask(benchmark::State& state, std::vector<Out>& out, int passes, Mas
 
 std::string str(const std::optional<Pixel>& p) { return p ? fmt("(%d, %d)", p->x, p->y) : std::string("none"); }
 
-void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query, MaskSide impl) {
+// jostle's side is the public query (the best kernel the CPU has), or with `pinned` the kernel
+// given (BM_MaskKernels: each kernel the CPU has on the same pool).
+template <class Count, class First, class Any>
+void bm_mask_with(benchmark::State& state, Inputs& inputs, int side, MaskQuery query, MaskSide impl, Count&& count,
+                  First&& first, Any&& any) {
     const MaskPool& p = inputs.masks(side);
     const auto& q = p.pairs;
     const int passes = query == MaskQuery::count ? 1 : kMaskPasses;
@@ -1097,7 +1101,7 @@ void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query,
         ns = time_mask(
             state, out, passes, impl, [&](std::size_t i) { return reference::count_overlap(q[i].a, q[i].b); },
             [&](std::size_t i) { return byte_count_overlap(q[i].ba, q[i].bb); },
-            [&](std::size_t i) { return count_overlap(q[i].a, q[i].b); });
+            [&](std::size_t i) { return count(q[i].a, q[i].b); });
         for (std::size_t i = 0; i < kPool; ++i)
             if (out[i] != p.count[i]) c.fail(i, fmt("count %d, the lecture's loop counts %d", out[i], p.count[i]));
         pixels = p.pixels_all;
@@ -1107,7 +1111,7 @@ void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query,
         ns = time_mask(
             state, out, passes, impl, [&](std::size_t i) { return reference::first_overlap(q[i].a, q[i].b); },
             [&](std::size_t i) { return byte_first_overlap(q[i].ba, q[i].bb); },
-            [&](std::size_t i) { return first_overlap(q[i].a, q[i].b); });
+            [&](std::size_t i) { return first(q[i].a, q[i].b); });
         for (std::size_t i = 0; i < kPool; ++i)
             if (out[i] != p.first[i])
                 c.fail(i, "first " + str(out[i]) + ", the lecture's loop finds " + str(p.first[i]));
@@ -1117,7 +1121,7 @@ void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query,
         ns = time_mask(
             state, out, passes, impl, [&](std::size_t i) -> char { return reference::overlaps(q[i].a, q[i].b); },
             [&](std::size_t i) -> char { return byte_overlaps(q[i].ba, q[i].bb); },
-            [&](std::size_t i) -> char { return overlaps(q[i].a, q[i].b); });
+            [&](std::size_t i) -> char { return any(q[i].a, q[i].b); });
         for (std::size_t i = 0; i < kPool; ++i)
             if ((out[i] != 0) != p.first[i].has_value())
                 c.fail(i, fmt("overlaps %d, the lecture's loop %d", out[i], p.first[i].has_value()));
@@ -1127,6 +1131,21 @@ void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query,
     // (the ceiling of a bit-packed scan is 64 pixels per AND of two words).
     state.counters["px/ns"] = pixels * static_cast<double>(passes) * static_cast<double>(state.iterations()) / ns;
     c.report(state, false);
+}
+
+void bm_mask(benchmark::State& state, Inputs& inputs, int side, MaskQuery query, MaskSide impl) {
+    bm_mask_with(
+        state, inputs, side, query, impl, [](const PlacedMask& a, const PlacedMask& b) { return count_overlap(a, b); },
+        [](const PlacedMask& a, const PlacedMask& b) { return first_overlap(a, b); },
+        [](const PlacedMask& a, const PlacedMask& b) { return overlaps(a, b); });
+}
+
+void bm_mask_kernel(benchmark::State& state, Inputs& inputs, int side, MaskQuery query, detail::MaskKernel k) {
+    bm_mask_with(
+        state, inputs, side, query, MaskSide::jostle,
+        [k](const PlacedMask& a, const PlacedMask& b) { return detail::count_overlap(a, b, k); },
+        [k](const PlacedMask& a, const PlacedMask& b) { return detail::first_overlap(a, b, k); },
+        [k](const PlacedMask& a, const PlacedMask& b) { return detail::overlaps(a, b, k); });
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1245,6 +1264,21 @@ void register_all(Inputs& inputs) {
                     [=, &inputs](benchmark::State& s) { bm_mask(s, inputs, side, query, baseline); });
                 add(group + "jostle", false,
                     [=, &inputs](benchmark::State& s) { bm_mask(s, inputs, side, query, MaskSide::jostle); });
+            }
+        }
+    }
+    // Each mask kernel the CPU has, from bmi2 (the anchor) up, on the 64 and 128 px pools (no
+    // target: what the vector kernels give, on the CPU the run is on).
+    using detail::MaskKernel;
+    for (const Query q : {Query{"overlaps", MaskQuery::overlaps}, Query{"first", MaskQuery::first}, Query{"count", MaskQuery::count}}) {
+        for (const int side : {64, 128}) {
+            const std::string base = std::string("BM_MaskKernels/") + q.name + "/" + std::to_string(side) + "/";
+            const MaskQuery query = q.query;
+            for (const auto& [k, name] : {std::pair{MaskKernel::bmi2, "bmi2"}, std::pair{MaskKernel::avx2, "avx2"},
+                                          std::pair{MaskKernel::avx512, "avx512"}}) {
+                if (static_cast<int>(k) > static_cast<int>(detail::best_mask_kernel())) continue;
+                add(base + name, k == MaskKernel::bmi2,
+                    [=, &inputs](benchmark::State& s) { bm_mask_kernel(s, inputs, side, query, k); });
             }
         }
     }

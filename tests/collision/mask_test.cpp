@@ -625,6 +625,24 @@ TEST(MaskDifferential, SameStridesAtEveryAlignmentDownToTheLastRow) {
     EXPECT_GT(hits, cases / 4);  // the random cases really exercise hits, not only misses
 }
 
+// The public queries run the best kernel the CPU has: a CPU check or a table that fell back
+// to a lesser kernel would still pass every test above, only slower.
+TEST(MaskDifferential, TheQueriesRunTheBestKernelTheCpuHas) {
+    using detail::MaskKernel;
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    const bool bmi2 = __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
+    const bool avx2 = bmi2 && __builtin_cpu_supports("avx") && __builtin_cpu_supports("avx2");
+    const bool avx512 = avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                        __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+                        __builtin_cpu_supports("avx512vpopcntdq") && __builtin_cpu_supports("avx512vbmi2");
+    const MaskKernel expected = avx512 ? MaskKernel::avx512 : avx2 ? MaskKernel::avx2 : bmi2 ? MaskKernel::bmi2 : MaskKernel::portable;
+#else
+    const MaskKernel expected = MaskKernel::portable;
+#endif
+    EXPECT_EQ(static_cast<int>(detail::best_mask_kernel()), static_cast<int>(expected));
+}
+
 TEST(MaskDifferential, EmptyMasksMissInEveryKernel) {
     using detail::MaskKernel;
     const Mask full = rows_of({"###", "###"});

@@ -32,8 +32,9 @@ using u64 = std::uint64_t;
 // Clear words past the last row (64 bytes a mask). The mask queries read the word after a
 // row's last one (two adjacent words joined by a shift) and mask off its bits, so a row's last
 // word has a readable neighbour, the next row's first word or the first of these; and the
-// AVX-512 kernel reads 8 words (and the one after them) from a shared row's start without a
-// load mask, keeping the shared rows' count off the loads' path (it masks the test instead).
+// AVX-512 and AVX2 kernels read 8 words (and the one after them) from a shared row's start
+// without a load mask, keeping the shared rows' count off the loads' path (they mask the test
+// instead): the AVX2 kernel's last read can be the last of these 8 words, so 8 is the least.
 constexpr std::size_t kPadWords = 8;
 
 bool usable(const Mask* m) { return m != nullptr && m->width() > 0 && m->height() > 0; }
@@ -777,12 +778,15 @@ template <int kS>
 // two masks of the same stride of kS = 1, 2, 4 or 8 words, read as the AVX-512 packed kernels
 // read them (rows kS words apart in both masks, so word `at` of the shared rows is P's word
 // at and O's words at, at + 1 joined), 8 words a step in two 4-lane vectors and one branch a
-// step: 8 rows of a 64 px pair, 4 of a 128 px one (the count: no branch but the loop's). A lane's column mask (~0, the tail, or 0
-// past the shared chunks) repeats every step (kS divides 8); lanes past the shared rows' last
-// word are masked by comparing their index with it. The loads are not masked: a step reads at
-// most 8 words (and one) past a shared row's start, which lie in the mask's storage or its clear
-// words after the last row (kPadWords), and what they read outside the shared rows is masked.
-// A vector shift by 64 or more gives 0, so the join needs no special case for shift 0.
+// step: 8 rows of a 64 px pair, 4 of a 128 px one (the count: no branch but the loop's). A
+// lane's column mask (~0, the tail, or 0 past the shared chunks) repeats every step (kS
+// divides 8); lanes past the shared rows' last word are masked by comparing their index with
+// it. The loads are not masked. The last step starts at most one row before the shared rows
+// end (at <= rows * kS - kS, at a multiple of 8), so it reads P up to word rows * kS + 7 - kS
+// from s.p and O up to word rows * kS + 7 of its first shared row (s.o is c >> 6 <= kS - 1 words
+// into it): at worst the last of O's kPadWords clear words. What they read outside the shared
+// rows is masked. A vector shift by 64 or more gives 0, so the join needs no special case for
+// shift 0.
 struct Avx2Step {
     __m256i cols0, cols1;  // the column masks of a step's two vectors
     __m256i shift_lo;      // s.shift in lane 0 (the vector shifts' count operand)
@@ -848,17 +852,17 @@ template <int kS>
     c.index1 = _mm256_add_epi64(c.index1, _mm256_set1_epi64x(8));
 }
 
-// The first step with a shared pixel: its first word (in the shared rows) and its two vectors;
-// or -1. One branch a step.
+// Whether a step has a shared pixel. One branch a step.
 template <int kS>
-[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline int first_step_avx2(const SharedWords& s, __m256i& w0, __m256i& w1) {
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline bool any_avx2(const SharedWords& s) {
     Avx2Scan c = avx2_scan<kS>(s);
     for (int at = 0; at < c.words; at += 8) {
+        __m256i w0, w1;
         avx2_words(s, c, at, w0, w1);
         const __m256i any = _mm256_or_si256(w0, w1);
-        if (_mm256_testz_si256(any, any) == 0) return at;
+        if (_mm256_testz_si256(any, any) == 0) return true;
     }
-    return -1;
+    return false;
 }
 
 // The set bits of each byte (a table lookup per nibble: AVX2 has no vector popcount).
@@ -885,31 +889,34 @@ template <int kS>
     return static_cast<int>(_mm_cvtsi128_si64(half) + _mm_extract_epi64(half, 1));
 }
 
-template <int kS>
-[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline bool any_avx2(const SharedWords& s) {
-    __m256i w0, w1;
-    return first_step_avx2<kS>(s, w0, w1) >= 0;
-}
-
-template <int kS>
-[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline FirstPixel first_avx2(const SharedWords& s) {
-    __m256i w0, w1;
-    const int at = first_step_avx2<kS>(s, w0, w1);
-    if (at < 0) return {0, 0};
-    // The lowest lane with a shared pixel (lanes run in reading order), and its lowest bit.
+// The lanes of w0 (bits 0-3) and w1 (bits 4-7) that are 0.
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline unsigned empty_lanes(__m256i w0, __m256i w1) {
     const __m256i zero = _mm256_setzero_si256();
     const auto empty0 = static_cast<unsigned>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(w0, zero))));
     const auto empty1 = static_cast<unsigned>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(w1, zero))));
-    const int lane = std::countr_zero(~(empty0 | empty1 << 4));
-    // The lane's word moved to lane 0 by a permute, not read back from memory: a local array of
-    // 8 words gets 32-byte alignment, and GCC 12 then realigns the stack on every call.
-    const __m256i half = _mm256_blendv_epi8(w0, w1, _mm256_set1_epi64x(-static_cast<long long>(lane >> 2)));
-    const __m256i pick = _mm256_add_epi32(_mm256_set1_epi32(2 * (lane & 3)), _mm256_set_epi32(1, 0, 1, 0, 1, 0, 1, 0));
-    const auto bits = static_cast<u64>(_mm_cvtsi128_si64(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(half, pick))));
-    const int word = at + lane;
-    const int col = 64 * (word % kS) + std::countr_zero(bits);
-    const auto x = static_cast<std::uint32_t>(s.x0 + col), y = static_cast<std::uint32_t>(s.y0 + word / kS);
-    return {x | u64{y} << 32, 1};
+    return empty0 | empty1 << 4;
+}
+
+// The step's test is the lanes' emptiness itself, so the first lane with a shared pixel is
+// known at the branch; its word is then made again from memory in scalar registers (three
+// loads that hit the cache), sooner than moved out of the vectors.
+template <int kS>
+[[gnu::target(JOSTLE_AVX2_MASKS), gnu::always_inline]] inline FirstPixel first_avx2(const SharedWords& s) {
+    Avx2Scan c = avx2_scan<kS>(s);
+    for (int at = 0; at < c.words; at += 8) {
+        __m256i w0, w1;
+        avx2_words(s, c, at, w0, w1);
+        if (const unsigned empty = empty_lanes(w0, w1); empty != 0xffu) {
+            const int word = at + std::countr_zero(~empty);  // in the shared rows, in reading order
+            const int chunk = word % kS;
+            const u64 cols = chunk == s.words - 1 ? s.tail : ~u64{0};  // a lane with a pixel is a shared chunk
+            const u64 bits = s.p[word] & join(s.o[word], s.o[word + 1], s.shift) & cols;
+            const int col = 64 * chunk + std::countr_zero(bits);
+            const auto x = static_cast<std::uint32_t>(s.x0 + col), y = static_cast<std::uint32_t>(s.y0 + word / kS);
+            return {x | u64{y} << 32, 1};
+        }
+    }
+    return {0, 0};
 }
 
 template <int kS>
