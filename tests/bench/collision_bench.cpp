@@ -1274,8 +1274,10 @@ void register_all(Inputs& inputs) {
         for (const int side : {64, 128}) {
             const std::string base = std::string("BM_MaskKernels/") + q.name + "/" + std::to_string(side) + "/";
             const MaskQuery query = q.query;
-            for (const auto& [k, name] : {std::pair{MaskKernel::bmi2, "bmi2"}, std::pair{MaskKernel::avx2, "avx2"},
-                                          std::pair{MaskKernel::avx512, "avx512"}}) {
+            for (const auto& kernel : {std::pair{MaskKernel::bmi2, "bmi2"}, std::pair{MaskKernel::avx2, "avx2"},
+                                       std::pair{MaskKernel::avx512, "avx512"}}) {
+                const MaskKernel k = kernel.first;  // a copy: clang 14 cannot capture a structured binding
+                const char* const name = kernel.second;
                 if (static_cast<int>(k) > static_cast<int>(detail::best_mask_kernel())) continue;
                 add(base + name, k == MaskKernel::bmi2,
                     [=, &inputs](benchmark::State& s) { bm_mask_kernel(s, inputs, side, query, k); });
