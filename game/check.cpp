@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "arena.h"
+#include "cli.h"
 #include "jostle/core/error.h"
 #include "jostle/core/interrupt.h"
 #include "jostle/core/text.h"
@@ -85,6 +86,7 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
     CheckOptions options;
     std::string assets = game::default_assets_dir();
     bool options_ended = false;  // after "--", a scenario named "-x.scn" is a scenario
+    game::OnceOnly once;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
         if (options_ended || a.size() < 2 || a.front() != '-') {
@@ -101,8 +103,9 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             continue;
         }
         if (a == "--report" || a == "--jobs" || a == "--tolerance" || a == "--max-pixels" || a == "--assets") {
-            if (i + 1 >= args.size() || args[i + 1].empty()) return usage(err, std::string(a) + " needs a value");
-            const std::string_view v = args[++i];
+            std::string_view v;
+            if (std::string e = game::option_value(args, i, a, v); !e.empty()) return usage(err, e);
+            if (std::string e = once.take(a); !e.empty()) return usage(err, e);
             if (a == "--report") report = std::string(v);
             if (a == "--assets") {
                 assets = std::string(v);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "arena.h"
+#include "cli.h"
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/render/image_compare.h"
@@ -61,20 +62,19 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
     std::optional<std::string> diff_path;
     CompareOptions options;
     bool options_ended = false;  // after "--", an image named "-a.png" is an image
+    game::OnceOnly once;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
-        const auto value = [&]() -> std::optional<std::string_view> {
-            if (i + 1 >= args.size()) return std::nullopt;
-            return args[++i];
-        };
         if (options_ended || a.size() < 2 || a.front() != '-') {
             if (a.empty()) return usage(err, "expected a PNG file, got an empty argument");
             files.emplace_back(a);
         } else if (a == "--") {
             options_ended = true;
         } else if (a == "--out" || a == "--tolerance" || a == "--max-pixels") {
-            const auto v = value();
-            if (!v || v->empty()) return usage(err, std::string(a) + " needs a value");
+            std::string_view value;
+            if (std::string e = game::option_value(args, i, a, value); !e.empty()) return usage(err, e);
+            if (std::string e = once.take(a); !e.empty()) return usage(err, e);
+            const std::optional<std::string_view> v = value;
             if (a == "--out") {
                 diff_path = std::string(*v);
             } else if (a == "--tolerance") {

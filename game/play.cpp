@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "arena.h"
+#include "cli.h"
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/core/interrupt.h"
@@ -155,12 +156,9 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
         for (std::size_t k = 0; k < std::size(kImageOptions); ++k) image_option_given[k] |= option == kImageOptions[k];
         dump_every_given |= option == "--dump-every";
     };
+    game::OnceOnly once;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
-        auto value = [&]() -> std::optional<std::string_view> {
-            if (i + 1 >= args.size()) return std::nullopt;
-            return args[++i];
-        };
         const bool option = !options_ended && a.size() > 1 && a.front() == '-';
         if (option && a == "--") {
             options_ended = true;
@@ -178,8 +176,10 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             quiet = true;
         } else if (a == "--out" || a == "--frames" || a == "--every" || a == "--size" || a == "--sheet" ||
                    a == "--anim" || a == "--trace" || a == "--dump-every" || a == "--assets") {
-            const auto v = value();
-            if (!v || v->empty()) return usage(err, std::string(a) + " needs a value");
+            std::string_view value;
+            if (std::string e = game::option_value(args, i, a, value); !e.empty()) return usage(err, e);
+            if (std::string e = once.take(a); !e.empty()) return usage(err, e);
+            const std::optional<std::string_view> v = value;
             given(a);
             if (a == "--out") options.out_dir = std::string(*v);
             if (a == "--frames") frames_text = std::string(*v);

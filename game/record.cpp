@@ -12,6 +12,7 @@
 #include <string>
 
 #include "arena.h"
+#include "cli.h"
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
 #include "jostle/core/interrupt.h"
@@ -99,6 +100,7 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
     bool seed_given = false, tick_rate_given = false;
     RecordDesc desc;
     std::string assets = game::default_assets_dir();
+    game::OnceOnly once;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view a = args[i];
         if (a == "--") {  // the end of the options: record takes no other arguments
@@ -114,8 +116,10 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
             if (a.size() > 1 && a.front() == '-') return usage(err, "unknown option '" + std::string(a) + "'");
             return usage(err, "unexpected argument '" + std::string(a) + "'");
         }
-        if (i + 1 >= args.size() || args[i + 1].empty()) return usage(err, std::string(a) + " needs a value");
-        const std::string_view v = args[++i];
+        std::string_view v;
+        if (std::string e = game::option_value(args, i, a, v); !e.empty()) return usage(err, e);
+        const std::string_view key = a == "--out" ? "-o" : a;  // one option, two spellings
+        if (!once.take(key).empty()) return usage(err, key == "-o" ? "-o (or --out) given twice" : std::string(a) + " given twice");
         if (a == "--level") level = std::string(v);
         if (a == "-o" || a == "--out") out_path = std::string(v);
         if (a == "--script") script_path = std::string(v);

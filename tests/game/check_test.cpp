@@ -820,6 +820,9 @@ TEST_F(Check, UsageErrorsExitTwoWithTheirMessage) {
         {{s, "--tolerance"}, "--tolerance needs a value"},
         {{s, "--report"}, "--report needs a value"},
         {{s, "--report", ""}, "--report needs a value"},
+        {{s, "--report", "--update"},
+         "--report needs a value, got the option '--update' (a value that begins with '-': write it as ./--update)"},
+        {{s, "--jobs", "1", "--jobs", "2"}, "--jobs given twice"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.message);

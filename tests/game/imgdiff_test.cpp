@@ -108,6 +108,8 @@ TEST_F(Imgdiff, BadUsageAndBadInputExitTwo) {
     expect_error(run({path("a.png")}), "expected two PNG files (EXPECTED and ACTUAL), got 1");
     expect_error(run({path("a.png"), path("a.png"), path("a.png")}), "got 3");
     expect_error(run({path("a.png"), path("a.png"), "--tolerance"}), "--tolerance needs a value");
+    expect_error(run({path("a.png"), path("a.png"), "--out", "--tolerance"}), "--out needs a value, got the option '--tolerance'");
+    expect_error(run({path("a.png"), path("a.png"), "--tolerance", "1", "--tolerance", "2"}), "--tolerance given twice");
     expect_error(run({path("a.png"), path("a.png"), "--tolerance", "256"}),
                  "--tolerance: expected a whole number from 0 to 255, got '256'");
     expect_error(run({path("a.png"), path("a.png"), "--max-pixels", "-1"}),

@@ -266,6 +266,13 @@ TEST_F(Record, UsageErrorsExitTwoWithTheirMessage) {
         EXPECT_EQ(r.status, 2) << option;
         EXPECT_EQ(r.err, usage_error(std::string(option) + " needs a value"));
     }
+    expect_rejected({"--level", "arena", "-o", "--seed", s, script},
+                    usage_error("-o needs a value, got the option '--seed' (a value that begins with '-': write it as ./--seed)"));
+    expect_rejected({"--level", "arena", "--level", "blob", "-o", kOut, s, script}, usage_error("--level given twice"));
+    expect_rejected({"--level", "arena", "-o", kOut, "--out", kOut, s, script}, usage_error("-o (or --out) given twice"));
+    // A negative number reaches the option's own check.
+    expect_rejected({"--level", "arena", "-o", kOut, "--seed", "-1", s, script},
+                    usage_error("--seed: expected a whole number from 0 to 18446744073709551615, got '-1'"));
 
     // A script that cannot be opened is bad input, not bad usage.
     const std::string missing = path("no_such.script");

@@ -1,0 +1,37 @@
+// The command line's shared option rules (cli.h).
+#include "cli.h"
+
+#include <algorithm>
+
+namespace jostle::game {
+
+namespace {
+
+bool looks_like_option(std::string_view v) {
+    if (v.size() < 2 || v.front() != '-') return false;
+    const char next = v[1];
+    return !((next >= '0' && next <= '9') || next == '.');
+}
+
+}  // namespace
+
+std::string option_value(std::span<const std::string_view> args, std::size_t& i, std::string_view name,
+                         std::string_view& value) {
+    if (i + 1 >= args.size() || args[i + 1].empty()) return std::string(name) + " needs a value";
+    const std::string_view v = args[i + 1];
+    if (looks_like_option(v)) {
+        return std::string(name) + " needs a value, got the option '" + std::string(v) +
+               "' (a value that begins with '-': write it as ./" + std::string(v) + ")";
+    }
+    value = v;
+    ++i;
+    return "";
+}
+
+std::string OnceOnly::take(std::string_view name) {
+    if (std::find(seen_.begin(), seen_.end(), name) != seen_.end()) return std::string(name) + " given twice";
+    seen_.emplace_back(name);
+    return "";
+}
+
+}  // namespace jostle::game

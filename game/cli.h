@@ -1,0 +1,31 @@
+// The command line's shared rules for options that take a value (play, record, check, imgdiff).
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace jostle::game {
+
+// Reads the value of option `name` (args[i]) from args[i + 1] and moves i past it. Returns ""
+// and sets `value`, or the usage error: no value, an empty one, or another option in its
+// place (`--trace --quiet` would otherwise write a file named --quiet). A value that begins
+// with '-' followed by a digit or '.' is a negative number, left to the option's own check;
+// "-" alone is a value (standard input or output where the option allows it).
+std::string option_value(std::span<const std::string_view> args, std::size_t& i, std::string_view name,
+                         std::string_view& value);
+
+// Options that take a value may be given once: a second one is a usage error rather than the
+// last silently winning. Callers name an option by one spelling (record's -o and --out alike).
+class OnceOnly {
+public:
+    // "" the first time, else "NAME given twice".
+    std::string take(std::string_view name);
+
+private:
+    std::vector<std::string> seen_;
+};
+
+}  // namespace jostle::game
