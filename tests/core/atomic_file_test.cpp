@@ -49,6 +49,27 @@ TEST_F(AtomicFileTest, CommitReplacesTheTargetWhole) {
     EXPECT_EQ(files(), std::vector<std::string>{"a.txt"});
 }
 
+TEST_F(AtomicFileTest, AReplacedFileKeepsItsPermissions) {
+    // Whatever the umask says, a private file stays private and a shared one shared.
+    const mode_t umask_before = ::umask(022);
+    for (const mode_t mode : {mode_t{0600}, mode_t{0640}, mode_t{0664}, mode_t{0755}}) {
+        SCOPED_TRACE(mode);
+        write_file_atomic(path("p.txt"), "old");
+        ASSERT_EQ(::chmod(path("p.txt").c_str(), mode), 0);
+        write_file_atomic(path("p.txt"), "new");
+        struct stat st{};
+        ASSERT_EQ(::stat(path("p.txt").c_str(), &st), 0);
+        EXPECT_EQ(st.st_mode & 07777, mode);
+        EXPECT_EQ(read_text(path("p.txt")), "new");
+    }
+    // A new file takes the umask's default.
+    write_file_atomic(path("fresh.txt"), "x");
+    struct stat st{};
+    ASSERT_EQ(::stat(path("fresh.txt").c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 07777, mode_t{0644});
+    ::umask(umask_before);
+}
+
 TEST_F(AtomicFileTest, WithoutCommitNothingChanges) {
     write_file_atomic(path("a.txt"), "old");
     {

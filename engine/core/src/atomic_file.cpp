@@ -182,6 +182,17 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
             fail("cannot create a file in " + folder + ": " + std::strerror(e));
         }
         temp_path_ = std::move(name);
+        // A file being replaced keeps its permissions (a private 0600 file stays private): the
+        // new one takes them, not the umask's default. (Its other names, hard links, keep the
+        // old contents: the rename gives the path a new file.)
+        struct stat old{};
+        if (::stat(place.c_str(), &old) == 0 && S_ISREG(old.st_mode) && ::fchmod(fd, old.st_mode & 07777) != 0) {
+            const int e = errno;
+            ::close(fd);
+            ::unlink(temp_path_.c_str());
+            temp_path_.clear();
+            fail("cannot give the new file the old one's permissions: " + std::string(std::strerror(e)));
+        }
         file_ = ::fdopen(fd, "wb");
         if (file_ == nullptr) {
             const int e = errno;
