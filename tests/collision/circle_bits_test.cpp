@@ -139,9 +139,11 @@ Manifold scalar_obb_circle(const Obb& a, const Circle& b) {
     const Rot q = a.rotation();
     Manifold m = scalar_box_circle(-a.half, a.half, inv_rotate(q, b.center - a.center), b.radius);
     if (!m.hit) return m;
+    const float reach = 2.0f * (a.half.x + a.half.y);  // the size within float (valid(Obb))
     const bool box_ok = std::isfinite(a.center.x) && std::isfinite(a.center.y) && std::isfinite(a.half.x) &&
                         std::isfinite(a.half.y) && std::isfinite(a.angle()) && a.half.x >= 0.0f &&
-                        a.half.y >= 0.0f;
+                        a.half.y >= 0.0f && std::isfinite(a.center.x + reach) && std::isfinite(a.center.x - reach) &&
+                        std::isfinite(a.center.y + reach) && std::isfinite(a.center.y - reach);
     if (!box_ok || !valid_circle(b)) return {};
     const Vec2 n = rotate(q, m.normal);
     m.normal = {n.x + 0.0f, n.y + 0.0f};

@@ -341,6 +341,28 @@ TEST(PolygonMotion, NonFiniteResultIsTheEmptyPolygon) {
     EXPECT_EQ(to_polygon(Aabb{{1, 1}, {0, 0}}).count(), 0);
 }
 
+// Rot is a plain pair: one that scales (or is zero) would leave normals that are not unit
+// (depth 5 for a circle 3 deep), or none; such a turn gives the empty polygon.
+TEST(PolygonMotion, ATurnThatIsNotARotationIsTheEmptyPolygon) {
+    const Polygon sq = make_polygon(std::vector<Vec2>{{0, 0}, {2, 0}, {2, 2}, {0, 2}}).value();
+    for (const Rot q : {Rot{2, 0}, Rot{0, 0}, Rot{0.5f, 0.5f}, Rot{1.001f, 0}, Rot{INFINITY, 0}}) {
+        SCOPED_TRACE(testing::Message() << q.c << ", " << q.s);
+        EXPECT_EQ(sq.rotated(q).count(), 0);
+        EXPECT_EQ(sq.transformed(Transform{{1, 1}, q}).count(), 0);
+        Polygon out = sq;
+        sq.rotated_into(q, out);
+        EXPECT_EQ(out.count(), 0);
+        EXPECT_FALSE(collide(sq.transformed(Transform{{0, 0}, q}), Circle{{2, 2}, 1}).hit);
+    }
+    // Rotations as cos and sin give them, and as a unit vector normalised in float, turn.
+    for (const Rot q : {Rot::from_angle(0.3f), Rot::from_angle(-2.0f), Rot{0.6f, 0.8f}, Rot{0, -1}}) {
+        EXPECT_EQ(sq.rotated(q).count(), 4);
+        Polygon out;
+        sq.rotated_into(q, out);
+        EXPECT_EQ(out.count(), 4);
+    }
+}
+
 // The Obb's stored rotation is the one its angle gives, whichever way the angle was set.
 TEST(ObbRotation, FollowsTheAngle) {
     Obb b{{1, 2}, {3, 4}, 0.5f};

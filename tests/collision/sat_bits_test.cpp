@@ -28,10 +28,13 @@ using test::kPi;
 
 bool finite(float v) { return std::isfinite(v); }
 
-// collide(Obb, Obb)'s validity rule: finite centre, half extents and angle, half extents >= 0.
+// collide(Obb, Obb)'s validity rule: finite centre, half extents and angle, half extents >= 0,
+// and a size within float: the centre plus and minus twice the halves' sum finite.
 bool valid_box(const Obb& b) {
+    const float reach = 2.0f * (b.half.x + b.half.y);
     return finite(b.center.x) && finite(b.center.y) && finite(b.half.x) && finite(b.half.y) && finite(b.angle()) &&
-           b.half.x >= 0.0f && b.half.y >= 0.0f;
+           b.half.x >= 0.0f && b.half.y >= 0.0f && finite(b.center.x + reach) && finite(b.center.x - reach) &&
+           finite(b.center.y + reach) && finite(b.center.y - reach);
 }
 
 using test::same_bits;

@@ -443,6 +443,24 @@ TEST(SatSegment, ZeroLengthSegments) {
     EXPECT_TRUE(is_miss(collide(Segment{{1, 1}, {1, 1}}, Segment{{2, 1}, {2, 1}})));
 }
 
+// A box whose size overflows float is malformed, an Obb as an Aabb: a miss for every query.
+TEST(SatLimits, AnObbWhoseSizeOverflowsIsAMissAsAnAabbIs) {
+    const Obb huge{{0, 0}, {2e38f, 2e38f}};  // 4e38 across
+    const Aabb same{{-2e38f, -2e38f}, {2e38f, 2e38f}};
+    for (const Shape& other : {Shape{Circle{{0, 0}, 1}}, Shape{Obb{{0, 0}, {1, 1}}}, Shape{Segment{{-1, 0}, {1, 0}}},
+                               Shape{make_polygon(std::vector<Vec2>{{0, 0}, {1, 0}, {0, 1}}).value()}}) {
+        EXPECT_TRUE(is_miss(collide(Shape{same}, other)));
+        EXPECT_TRUE(is_miss(collide(Shape{huge}, other)));
+        EXPECT_TRUE(is_miss(collide(other, Shape{huge})));
+    }
+    EXPECT_FALSE(cast({0, 0}, {1, 0}, huge).hit);
+    EXPECT_FALSE(sweep(Circle{{5, 0}, 1}, {1, 0}, huge).hit);
+    // A corner beyond float: the centre far out, the halves modest.
+    EXPECT_TRUE(is_miss(collide(Obb{{3e38f, 0}, {1e38f, 1}}, Circle{{0, 0}, 1})));
+    // Large but finite boxes stay boxes.
+    EXPECT_TRUE(collide(Obb{{0, 0}, {1e37f, 1e37f}}, Circle{{0, 0}, 1}).hit);
+}
+
 TEST(SatLimits, ProjectionsBeyondFloatRangeAreAMiss) {
     // Found by the collision fuzz target (tests/fuzz/regressions/collision/): two boxes with
     // half extents of FLT_MAX; their projections overflow and SAT reported depth inf. A depth

@@ -561,8 +561,10 @@ Manifold collide(const Obb& a, const Circle& b) {
         return {};
     // hit_with's test (a finite depth and normal) and valid(a) && valid(b) in one: x - x is 0
     // exactly for a finite x (see detail::all_finite), lane by lane, and the half extents and
-    // radius >= 0. A miss all the same, whichever fails.
-    const Float4 box = __builtin_shufflevector(centre, hi, 0, 1, 4, 5);  // centre x, y, half x, y
+    // radius >= 0. A miss all the same, whichever fails. (The box's lanes are valid(Obb)'s:
+    // its centre plus and minus twice the halves' sum, so that a size beyond float is a miss.)
+    const float reach = 2.0f * (hi[0] + hi[1]);
+    const Float4 box = __builtin_shufflevector(centre, centre, 0, 1, 0, 1) + Float4{reach, reach, -reach, -reach};
     const Float4 rest = {a.angle(), bc[0], bc[1], b.radius * b.radius};
     const Float4 answer = {depth, normal.x, normal.y, 0.0f};
     const Float4 zero = {0.0f, 0.0f, 0.0f, 0.0f};

@@ -40,8 +40,13 @@ inline bool all_finite(float a, float b, float c) { return ((a - a) + (b - b)) +
 inline bool all_finite(float a, float b, float c, float d, float e) {
     return (((a - a) + (b - b)) + ((c - c) + (d - d))) + (e - e) == 0.0f;
 }
+// A box's extent must be finite as well as its fields, as an Aabb's size must: the centre
+// plus and minus twice the half extents' sum (beyond every corner) is finite exactly when
+// the fields are and no corner or size overflows, give or take a factor of two near FLT_MAX.
 inline bool valid(const Obb& b) {
-    return all_finite(b.center.x, b.center.y, b.half.x, b.half.y, b.angle()) & (b.half.x >= 0.0f) & (b.half.y >= 0.0f);
+    const float reach = 2.0f * (b.half.x + b.half.y);
+    return all_finite(b.center.x + reach, b.center.y + reach, b.center.x - reach, b.center.y - reach, b.angle()) &
+           (b.half.x >= 0.0f) & (b.half.y >= 0.0f);
 }
 // r * r stands for r: it is finite exactly when r is and r^2 does not overflow (r up to about
 // 1.8e19), so no distance test compares inf with inf.

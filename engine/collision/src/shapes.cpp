@@ -130,7 +130,14 @@ void Polygon::moved_into(Vec2 d, Polygon& out) const {
     }
 }
 
+namespace {
+// Whether q turns without scaling, to well within float's rounding of cos and sin (and is
+// finite: a NaN fails the comparison).
+bool is_rotation(Rot q) { return std::fabs((q.c * q.c + q.s * q.s) - 1.0f) <= 1e-4f; }
+}  // namespace
+
 Polygon Polygon::transformed(const Transform& xf) const {
+    if (!is_rotation(xf.q)) return {};
     Polygon out = *this;
     for (int i = 0; i < count_; ++i) {
         out.points_[i] = apply(xf, points_[i]);
@@ -141,6 +148,7 @@ Polygon Polygon::transformed(const Transform& xf) const {
 }
 
 Polygon Polygon::rotated(Rot q) const {
+    if (!is_rotation(q)) return {};
     Polygon out = *this;
     for (int i = 0; i < count_; ++i) {
         out.points_[i] = rotate(q, points_[i]);
@@ -151,7 +159,7 @@ Polygon Polygon::rotated(Rot q) const {
 }
 
 void Polygon::rotated_into(Rot q, Polygon& out) const {
-    if (out.count_ != count_) {
+    if (out.count_ != count_ || !is_rotation(q)) {
         out = rotated(q);
         return;
     }
