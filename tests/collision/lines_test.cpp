@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <numeric>
 #include <limits>
 
 #include "test_shapes.h"
@@ -207,6 +209,43 @@ TEST(ClosestPointSegment, InsideAndBeyondTheEnds) {
     EXPECT_VEC_NEAR(closest_point(Segment{{0, 0}, {2, 2}}, {5, 3}), (Vec2{2, 2}), 1e-6f);
     // Zero length: the point itself.
     EXPECT_EQ(closest_point(Segment{{3, 3}, {3, 3}}, {7, -1}), (Vec2{3, 3}));
+}
+
+// The TOLERANCES promise: shapes that touch exactly in float (integer coordinates) report a
+// hit with depth 0. A point on an integer segment (3, 0) on (0, 0)-(21, 0) was 2.4e-7 off it by
+// a + t (b - a) with t = 3/21 rounded: a zero-radius circle, a point segment, a zero-length cast
+// and swept_overlaps all missed it (about 1 in 10 such points). The offset across the segment
+// now comes from the cross product, exact there.
+TEST(ClosestPointSegment, AnIntegerPointOnAnIntegerSegmentIsOnIt) {
+    Rng rng(2026);
+    int checked = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const auto coordinate = [&] { return static_cast<float>(static_cast<int>(rng.below(401)) - 200); };
+        const Vec2 a{coordinate(), coordinate()};
+        const Vec2 b{coordinate(), coordinate()};
+        // The integer points on a-b: a + j (b - a) / g for g = gcd of the steps, 0 < j < g.
+        const int dx = static_cast<int>(b.x - a.x), dy = static_cast<int>(b.y - a.y);
+        const int g = std::gcd(std::abs(dx), std::abs(dy));
+        if (g < 2) continue;
+        const int j = 1 + static_cast<int>(rng.below(static_cast<std::uint32_t>(g - 1)));
+        const Vec2 p{a.x + static_cast<float>(j * (dx / g)), a.y + static_cast<float>(j * (dy / g))};
+        const Segment s{a, b};
+        SCOPED_TRACE(testing::Message() << "(" << p.x << ", " << p.y << ") on (" << a.x << ", " << a.y << ")-(" << b.x
+                                        << ", " << b.y << ")");
+        ASSERT_EQ(closest_point(s, p), p);
+        const Manifold m = collide(s, Circle{p, 0.0f});
+        ASSERT_TRUE(m.hit);
+        ASSERT_EQ(m.depth, 0.0f);
+        ASSERT_TRUE(intersect(Segment{p, p}, s).hit);
+        ASSERT_TRUE(intersect(s, Segment{p, p}).hit);
+        ASSERT_TRUE(cast(p, p, s).hit);
+        ASSERT_TRUE(swept_overlaps(Circle{a, 0.0f}, b - a, Circle{p, 0.0f}));
+        ++checked;
+    }
+    EXPECT_GT(checked, 1000);
+    // The first case found, by hand.
+    EXPECT_EQ(closest_point(Segment{{0, 0}, {21, 0}}, {3, 0}), (Vec2{3, 0}));
+    EXPECT_TRUE(collide(Segment{{0, 0}, {21, 0}}, Circle{{3, 0}, 0}).hit);
 }
 
 TEST(ClosestPointOnCircle, SlideFormula) {
