@@ -323,7 +323,10 @@ inline Vec2 offset_from_boundary(const Polygon& poly, Vec2 p, int* edge) {
 // point's start. On a hit, t in [0, 1] and `outward` is the unit vector from the centre to
 // the point at contact. Only called with the point outside the circle at t = 0. A path that
 // only grazes the circle (F = R) is a hit here, at G = 0: sweeps then drop it by their
-// moving-into rule, casts keep it (a bullet that touches a circle hits it).
+// moving-into rule, casts keep it (a bullet that touches a circle hits it). But F comes from
+// the rounded direction, and G = sqrt(R^2 - F^2) magnifies its rounding (about sqrt(eps) R):
+// an exact graze may come out a hit a little into the motion (a normal 5e-4 past the
+// perpendicular for R = 2), which sweeps keep (see LIMITS).
 struct CircleContact {
     bool hit = false;
     float t = 0.0f;

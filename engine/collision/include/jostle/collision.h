@@ -46,8 +46,9 @@
 //             touching or overlapping at t = 0 report t = 0 only when A moves into B; moving
 //             off B, sliding along it or a path that only grazes it is no hit (the lecture's
 //             moving-away early out, 09-114): a ball left touching a wall by the MTD push can
-//             leave it, and a ball rolls over a mask's pixel seams. A start in overlap is
-//             judged along collide()'s MTD normal: a circle deep inside moving along its MTD
+//             leave it, and a ball resting on a mask rolls over its pixel seams (one sunk
+//             into it does not: see LIMITS). A start in overlap is judged along collide()'s
+//             MTD normal: a circle deep inside moving along its MTD
 //             face is no hit (the narrowphase resolves overlaps), and at an exact tie of faces
 //             the shape's own face order decides (a box and the same box as a Polygon list
 //             their faces differently).
@@ -131,7 +132,13 @@
 //   point up to rounding, and the normal may be a neighbouring feature's. Near a polygon's
 //   corner of interior angle theta, a cast or sweep is placed to within the coordinates'
 //   rounding / sin theta: at a sliver's tip of 1e-5 rad, with coordinates near 30, about a
-//   pixel (make_polygon rejects only turns within 1e-6 rad of straight). A mask's MTD takes
+//   pixel (make_polygon rejects only turns within 1e-6 rad of straight). A sweep's "only
+//   grazes" is decided to the rounding of the lecture's G = sqrt(R^2 - F^2), about sqrt(eps)
+//   of the radii: a path that grazes a circle or a corner exactly may be a hit at a slant of a
+//   few 1e-4 (a circle of radius 1 from (-2, 0) by (6, 8) past one of radius 1 at (5, 6):
+//   t = 0.9). A circle sunk into a mask (by more than rounding) meets the side of the next
+//   pixel when it rolls across a seam between pixels: the mask's pixels are swept one by one.
+//   A mask's MTD takes
 //   time that grows with the push it finds. Against a convex shape a push longer than 16 px
 //   starts from the faces' exits and skips the columns that cannot hold it (a 32 px round
 //   mask 8,700 px deep in a hexagon: 0.9 ms on a 2020s CPU; 8,000 px deep in a box: 0.01
