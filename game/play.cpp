@@ -109,7 +109,7 @@ options:
   --out DIR         write frames as DIR/frame_NNNNNN.png (the tick number, zero-padded); not
                     the assets' levels or sprites folder (the frames would be sprites)
   --frames LIST     which ticks become frames: all (default), 120, 10-20, 300- (to the end),
-                    or a comma-separated list of those
+                    or a comma-separated list of numbers and ranges (120,200-240)
   --every N         keep every Nth frame of each range (default 1)
   --size WxH        frame size in pixels, sides 1 to 8192 (default: the level's size, scaled
                     down to 8192 on its longer side; the level is scaled to fit and centred)
@@ -297,16 +297,19 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             err << "jostle play: " << scenario_path << ":" << e.line << ": expectation failed at tick " << e.tick << ": expected "
                 << e.text << ", found " << r.actual << "\n";
         }
-        // An output asked for and not written says so, --quiet or not.
+        // An output asked for and not written says so, --quiet or not (the --out folder too,
+        // made but left empty).
+        std::int64_t frames = 0;
+        for (const std::string& path : result.files_written) frames += path != options.sheet_path && path != options.anim_path;
+        const std::string why_none = result.ticks == 0 ? std::string("the run has no ticks")
+                                                       : "--frames " + frames_text + " selects no tick of this run (ticks 0 to " +
+                                                             std::to_string(result.ticks - 1) + ")";
         for (const std::string* path : {&options.sheet_path, &options.anim_path}) {
             if (!path->empty() && std::find(result.files_written.begin(), result.files_written.end(), *path) == result.files_written.end()) {
-                err << "jostle play: note: " << *path << " not written: "
-                    << (result.ticks == 0 ? std::string("the run has no ticks")
-                                          : "--frames " + frames_text + " selects no tick of this run (ticks 0 to " +
-                                                std::to_string(result.ticks - 1) + ")")
-                    << "\n";
+                err << "jostle play: note: " << *path << " not written: " << why_none << "\n";
             }
         }
+        if (!options.out_dir.empty() && frames == 0) err << "jostle play: note: no frames in " << options.out_dir << ": " << why_none << "\n";
         // A file sent to standard output keeps it to itself (text after a trace's last line
         // or a PNG's last chunk would make it unreadable): the summary goes to stderr then.
         std::ostream& summary = [&]() -> std::ostream& {
@@ -330,8 +333,6 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             const auto wrote = [&](const std::string& path) {
                 return std::find(result.files_written.begin(), result.files_written.end(), path) != result.files_written.end();
             };
-            std::int64_t frames = 0;
-            for (const std::string& path : result.files_written) frames += path != options.sheet_path && path != options.anim_path;
             if (!options.out_dir.empty()) {
                 summary << "frames: " << frames << " in " << options.out_dir << (options.out_dir.ends_with('/') ? "" : "/") << "\n";
             }

@@ -169,7 +169,7 @@ protected:
 
 TEST_F(Record, BadScriptStepsExitTwoNamingFileLineAndColumn) {
     const std::string actions = " (expected one of: left, right, up, down, fire)";
-    const std::string ticks = "expected a number of ticks (1 .. 100000000), got ";
+    const std::string ticks = "expected a number of ticks (1 .. 16777216), got ";
     const std::string expect_forms = "expected 'expect NAME alive|gone|in X0 Y0 X1 Y1, or count KIND OP N, var NAME OP V, event NAME'";
     const std::string unknown_step = " (expected hold, press, wait, screenshot or expect)";
     struct Case {
@@ -636,7 +636,7 @@ TEST_F(Record, AScriptLongerThanAScenarioCanBeIsRefusedAtItsLine) {
     const std::string out = path("long.scn");
     const RunResult r = run_record({"--level", "arena", "-o", out, "--script", script});
     EXPECT_EQ(r.status, 2);
-    EXPECT_EQ(r.err, "jostle record: " + script + ":2:1: the recording would be longer than a scenario can be (16777216 ticks)\n");
+    EXPECT_EQ(r.err, "jostle record: " + script + ":2:1: the recording would be longer than a scenario can be (16777216 ticks): 16777217 ticks by the end of this line\n");
     EXPECT_FALSE(fs::exists(out));
     const game::ArenaGame game(kAssets);
     const Scenario at_cap = parse_scenario(header() + "0 up\nat 16777216 end\n", "cap.scn", game.vocabulary());

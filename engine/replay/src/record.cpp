@@ -53,8 +53,10 @@ std::vector<ScriptStep> parse_input_script(std::string_view text, const std::str
         auto count = [&](const Word& w) -> std::int64_t {
             std::int64_t n = 0;
             const auto [ptr, ec] = std::from_chars(w.text.data(), w.text.data() + w.text.size(), n);
-            if (ec != std::errc() || ptr != w.text.data() + w.text.size() || n < 1 || n > 100'000'000) {
-                fail(w.column, "expected a number of ticks (1 .. 100000000), got '" + std::string(w.text) + "'");
+            // (At most a whole scenario's ticks: the sum of the steps is checked against it too.)
+            if (ec != std::errc() || ptr != w.text.data() + w.text.size() || n < 1 || n > kMaxScenarioTicks) {
+                fail(w.column, "expected a number of ticks (1 .. " + std::to_string(kMaxScenarioTicks) + "), got '" +
+                                   std::string(w.text) + "'");
             }
             return n;
         };
@@ -109,7 +111,7 @@ Recording record(const Game& game, const RecordDesc& desc, std::span<const Scrip
         if (total > kMaxScenarioTicks) {
             throw InputError(SourceLocation{script_source, step.line, 1},
                              "the recording would be longer than a scenario can be (" + std::to_string(kMaxScenarioTicks) +
-                                 " ticks)");
+                                 " ticks): " + std::to_string(total) + " ticks by the end of this line");
         }
     }
     s.level_hash = game.level_hash(s.level);
