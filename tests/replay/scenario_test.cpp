@@ -603,6 +603,10 @@ TEST(ScenarioErrors, NonFiniteAndMalformedNumbers) {
     EXPECT_EQ(error_of(with_header("at 5 expect var score = nan\n")), "s.scn:7:25: expected a finite number, got 'nan'");
     EXPECT_EQ(error_of(with_header("at 5 expect var score = inf\n")), "s.scn:7:25: expected a finite number, got 'inf'");
     EXPECT_EQ(error_of(with_header("at 5 expect var score = -inf\n")), "s.scn:7:25: expected a finite number, got '-inf'");
+    // A count is whole and not negative (it could never equal 1.5).
+    EXPECT_EQ(error_of(with_header("at 5 expect count bullet = 1.5\n")), "s.scn:7:28: expected a whole count (0 or more), got '1.5'");
+    EXPECT_EQ(error_of(with_header("at 5 expect count bullet >= -1\n")), "s.scn:7:29: expected a whole count (0 or more), got '-1'");
+    EXPECT_EQ(error_of(with_header("at 5 expect count bullet = 2e0\n")), "no error");
     EXPECT_EQ(error_of(with_header("at 5 expect var score = 1e400\n")), "s.scn:7:25: expected a finite number, got '1e400'");
     EXPECT_EQ(error_of(with_header("at 5 expect var score = ten\n")), "s.scn:7:25: expected a finite number, got 'ten'");
     EXPECT_EQ(error_of(with_header("at 5 expect var score = 1,5\n")), "s.scn:7:25: expected a finite number, got '1,5'");

@@ -133,6 +133,10 @@ Expectation parse_expect(const Parser& p, std::string_view line, const std::vect
         e.name = std::string(words[2].text);
         e.comparison = p.comparison(words[3]);
         e.value = p.number(words[4]);
+        // A count of entities is whole and not negative: 'count bullet = 1.5' could never hold.
+        if (e.kind == Expectation::Kind::count && !(e.value >= 0.0 && e.value == std::floor(e.value))) {
+            p.fail(words[4], "expected a whole count (0 or more), got '" + std::string(words[4].text) + "'");
+        }
     } else if (subject == "event") {
         p.expect_count(words, 3, form("expect event NAME").c_str());
         e.kind = Expectation::Kind::event;

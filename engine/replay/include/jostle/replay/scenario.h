@@ -19,6 +19,7 @@
 //   at 60 expect player in 100 40 140 80     the entity's position is in [100,140]x[40,80]
 //   at 60 expect player alive          ("gone" for the opposite)
 //   at 60 expect count rock >= 3       how many entities of a kind: = != < <= > >=
+//                                      (N whole and not negative)
 //   at 60 expect var score = 10        a game variable, same comparisons
 //   at 60 expect event pickup          the game reported "pickup" at or before tick 60
 //   at 120 end                         the run is 120 ticks: 0 .. 119
