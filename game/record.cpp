@@ -225,6 +225,15 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         }
         if (file.in_place()) file.write(text);
         file.commit();
+        // What --from's file had past the kept ticks is not in the new scenario: said, not
+        // silently gone (re-recording a file in place would otherwise lose its checks).
+        if (recording.dropped_expectations > 0 || recording.dropped_screenshots > 0) {
+            err << "jostle record: note: " << from_path << ": not kept, being at tick " << *at << " or later: ";
+            if (recording.dropped_expectations > 0) err << counted(recording.dropped_expectations, "expectation");
+            if (recording.dropped_expectations > 0 && recording.dropped_screenshots > 0) err << " and ";
+            if (recording.dropped_screenshots > 0) err << counted(recording.dropped_screenshots, "screenshot");
+            err << "\n";
+        }
         // The replay's expectations are the recording's, in the same order (both sorted by
         // tick); the recording knows which file and line each came from.
         for (std::size_t i = 0; i < replayed.expectations.size(); ++i) {

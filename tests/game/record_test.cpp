@@ -123,13 +123,14 @@ protected:
     }
 
     // Records `script` (from a file) to NAME and checks it succeeded.
-    std::string record_file(const std::string& name, const std::string& script, std::vector<std::string> args = {}) {
+    std::string record_file(const std::string& name, const std::string& script, std::vector<std::string> args = {},
+                            const std::string& expected_err = "") {
         const std::string script_path = write(name + ".script", script);
         args.insert(args.end(), {"-o", path(name), "--script", script_path});
         if (std::find(args.begin(), args.end(), "--from") == args.end()) args.insert(args.end(), {"--level", "arena"});
         const RunResult r = run_record(args);
         EXPECT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(r.err, "");
+        EXPECT_EQ(r.err, expected_err);
         return path(name);
     }
 
@@ -441,8 +442,10 @@ TEST_F(Record, FromAtKeepsTheFirstTicksAndContinuesWithTheScript) {
     ASSERT_EQ(read_text(old), header(kOldSeed, kOldRate) + kScriptBody);
 
     // Keep ticks 0..50: the old input, the screenshot at 29 and the expectation at 50 (the last
-    // kept tick); the directives at 99 go. The level, seed and tick rate are the old file's.
-    const std::string again = record_file("again.scn", kNewScript, {"--from", old, "--at", "51"});
+    // kept tick); the directives at 99 go, and a note says so. The level, seed and tick rate
+    // are the old file's.
+    const std::string again = record_file("again.scn", kNewScript, {"--from", old, "--at", "51"},
+                                          "jostle record: note: " + old + ": not kept, being at tick 51 or later: 1 expectation and 1 screenshot\n");
     EXPECT_EQ(read_text(again), header(kOldSeed, kOldRate) +
                                     "0-29 up\n"
                                     "30-49 left fire\n"
@@ -504,7 +507,8 @@ TEST_F(Record, FromAtKeepsTheFirstTicksAndContinuesWithTheScript) {
 
 TEST_F(Record, FromAtZeroIsAFreshRecordingWithTheOldSettings) {
     const std::string old = record_file("old.scn", kScript, {"--seed", "7", "--tick-rate", "30"});
-    const std::string again = record_file("again.scn", kNewScript, {"--from", old, "--at", "0"});
+    const std::string again = record_file("again.scn", kNewScript, {"--from", old, "--at", "0"},
+                                          "jostle record: note: " + old + ": not kept, being at tick 0 or later: 2 expectations and 2 screenshots\n");
     const std::string fresh = record_file("fresh.scn", kNewScript, {"--seed", "7", "--tick-rate", "30"});
     EXPECT_EQ(read_text(again), read_text(fresh));
     EXPECT_EQ(read_text(again), header(kOldSeed, kOldRate) + "0-19 down\n\nat 19 expect player alive\nat 20 end\n");

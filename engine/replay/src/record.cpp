@@ -141,8 +141,13 @@ Recording record(const Game& game, const RecordDesc& desc, std::span<const Scrip
             }
         }
         for (const Screenshot& shot : desc.from->screenshots) {
-            if (shot.tick < desc.keep_ticks) s.screenshots.push_back(shot);
+            if (shot.tick < desc.keep_ticks) {
+                s.screenshots.push_back(shot);
+            } else {
+                ++out.dropped_screenshots;
+            }
         }
+        out.dropped_expectations = static_cast<std::int64_t>(desc.from->expectations.size() - next);
     }
     for (const ScriptStep& step : script) {
         const std::int64_t last = static_cast<std::int64_t>(s.inputs.size()) - 1;

@@ -54,6 +54,10 @@ struct Recording {
     // Where each of scenario.expectations was written (the --from file or the script), for
     // messages with the right file and line.
     std::vector<std::string> expectation_sources;
+    // With --from: the expectations and screenshots of that file at or after the kept ticks'
+    // end, which the new scenario does not have (the caller says so).
+    std::int64_t dropped_expectations = 0;
+    std::int64_t dropped_screenshots = 0;
 };
 
 // Plays the kept ticks and the script live and returns the scenario and the run's hashes.
