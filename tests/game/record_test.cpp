@@ -182,6 +182,7 @@ TEST_F(Record, BadScriptStepsExitTwoNamingFileLineAndColumn) {
         {"hold jump 5\n", "1:6: unknown action 'jump'" + actions},
         {"press right jump\n", "1:13: unknown action 'jump'" + actions},
         {"hold Right 5\n", "1:6: unknown action 'Right'" + actions},
+        {"hold right 5 6\n", "1:12: expected an action, got '5' (a step has one number of ticks, at its end: 'hold ACTION... TICKS')"},
         // Missing, non-numeric, negative, zero and too large counts.
         {"hold\n", "1:5: expected 'hold ACTION... TICKS'"},
         {"hold right\n", "1:11: expected 'hold ACTION... TICKS'"},
@@ -207,7 +208,7 @@ TEST_F(Record, BadScriptStepsExitTwoNamingFileLineAndColumn) {
         {"wait 3 now\n", "1:8: expected 'wait TICKS'"},
         {"\twait\t3\tnow\n", "1:9: expected 'wait TICKS'"},
         {"press fire now\n", "1:12: unknown action 'now'" + actions},
-        {"hold right 5 more\n", "1:12: unknown action '5'" + actions},  // the last word is the count
+        {"hold right 5 more\n", "1:12: expected an action, got '5' (a step has one number of ticks, at its end: 'hold ACTION... TICKS')"},  // the last word is the count
         {"wait 1\nscreenshot now\n", "2:12: expected 'screenshot' alone"},
         // Bad expectations.
         {"wait 1\nexpect\n", "2:7: " + expect_forms},
@@ -301,7 +302,7 @@ TEST_F(Record, UsageErrorsExitTwoWithTheirMessage) {
                     "jostle record: " + script + ":1:1: expected 'jostle-scenario 1' as the first line (is this a scenario file?)\n");
     const std::string truncated = write("truncated.scn", header() + "0-4 up");
     expect_rejected({"--from", truncated, "--at", "0", "-o", kOut, s, script},
-                    "jostle record: " + truncated + ":8: truncated file: the last line has no newline\n");
+                    "jostle record: " + truncated + ":8: truncated file: the last line has no newline (if the file is whole, end it with one)\n");
     const std::string jump = write("jump.scn", header() + "0-4 jump\n");
     expect_rejected({"--from", jump, "--at", "0", "-o", kOut, s, script},
                     "jostle record: " + jump + ":8:5: unknown action 'jump' (expected one of: left, right, up, down, fire, or '-' for none)\n");

@@ -438,10 +438,10 @@ TEST(ScenarioErrors, NotAScenarioFile) {
 }
 
 TEST(ScenarioErrors, TruncatedFile) {
-    EXPECT_EQ(error_of(with_header("0 up")), "s.scn:7: truncated file: the last line has no newline");
-    EXPECT_EQ(error_of(with_header("0 up\n# the end")), "s.scn:8: truncated file: the last line has no newline");
-    EXPECT_EQ(error_of("jostle-scenario 1"), "s.scn:1: truncated file: the last line has no newline");
-    EXPECT_EQ(error_of(with_header("0-9 up\r")), "s.scn:7: truncated file: the last line has no newline");
+    EXPECT_EQ(error_of(with_header("0 up")), "s.scn:7: truncated file: the last line has no newline (if the file is whole, end it with one)");
+    EXPECT_EQ(error_of(with_header("0 up\n# the end")), "s.scn:8: truncated file: the last line has no newline (if the file is whole, end it with one)");
+    EXPECT_EQ(error_of("jostle-scenario 1"), "s.scn:1: truncated file: the last line has no newline (if the file is whole, end it with one)");
+    EXPECT_EQ(error_of(with_header("0-9 up\r")), "s.scn:7: truncated file: the last line has no newline (if the file is whole, end it with one)");
     // The header cut short.
     EXPECT_EQ(error_of("jostle-scenario 1\n"), "s.scn:1: truncated file: the header has no 'engine' line");
     EXPECT_EQ(error_of("jostle-scenario 1\nengine 0.1.0\nlevel arena\n"), "s.scn:3: truncated file: the header has no 'seed' line");

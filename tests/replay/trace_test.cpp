@@ -152,8 +152,8 @@ TEST(TraceErrors, NotATrace) {
 }
 
 TEST(TraceErrors, Truncated) {
-    EXPECT_EQ(error_of("jostle-trace 1"), "t.trace:1: truncated file: the last line has no newline");
-    EXPECT_EQ(error_of(kHead + "0 0000000000000001\n1 0000000000000002"), "t.trace:5: truncated file: the last line has no newline");
+    EXPECT_EQ(error_of("jostle-trace 1"), "t.trace:1: truncated file: the last line has no newline (if the file is whole, end it with one)");
+    EXPECT_EQ(error_of(kHead + "0 0000000000000001\n1 0000000000000002"), "t.trace:5: truncated file: the last line has no newline (if the file is whole, end it with one)");
     EXPECT_EQ(error_of(kHead + "0 0000000000000001\n"), "t.trace:4: truncated file: 1 tick lines, the header says 2");
     EXPECT_EQ(error_of(kHead), "t.trace:3: truncated file: 0 tick lines, the header says 2");
     EXPECT_EQ(error_of("jostle-trace 1\n"), "t.trace:1: truncated file: expected 'ticks N'");

@@ -47,6 +47,11 @@ std::vector<ScriptStep> parse_input_script(std::string_view text, const std::str
             for (std::size_t i = 0; i < vocabulary.actions.size(); ++i) {
                 if (vocabulary.actions[i] == w.text) return static_cast<int>(i);
             }
+            if (!w.text.empty() && w.text.find_first_not_of("0123456789") == std::string_view::npos) {
+                // 'hold right 5 6': a number among the actions (the ticks come last, once).
+                fail(w.column, "expected an action, got '" + std::string(w.text) +
+                                   "' (a step has one number of ticks, at its end: 'hold ACTION... TICKS')");
+            }
             fail(w.column, "unknown action '" + std::string(w.text) + "' (expected one of: " + join(vocabulary.actions) + ")");
             return 0;
         };

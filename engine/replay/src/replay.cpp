@@ -267,7 +267,7 @@ ReplayResult parse_trace(std::string_view text, const std::string& source) {
         std::size_t end = text.find('\n', at);
         if (end == std::string_view::npos) {
             ++line_number;
-            fail("truncated file: the last line has no newline");
+            fail("truncated file: the last line has no newline (if the file is whole, end it with one)");
         }
         *line = text.substr(at, end - at);
         at = end + 1;

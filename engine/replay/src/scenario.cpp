@@ -214,7 +214,7 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
     }
     if (text.back() != '\n') {
         const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
-        p.fail(lines, 0, "truncated file: the last line has no newline");
+        p.fail(lines, 0, "truncated file: the last line has no newline (if the file is whole, end it with one)");
     }
 
     bool have_engine = false, have_level = false, have_seed = false, have_rate = false, have_hash = false;
