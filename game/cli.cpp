@@ -7,10 +7,12 @@ namespace jostle::game {
 
 namespace {
 
+// "--anything", or a dash and one letter ("-o", "-h"): the shapes options take. Anything else
+// that begins with '-' ("-", "-1", "-.5", "-inf") is a value, for the option's own check.
 bool looks_like_option(std::string_view v) {
-    if (v.size() < 2 || v.front() != '-') return false;
-    const char next = v[1];
-    return !((next >= '0' && next <= '9') || next == '.');
+    if (v.size() > 2 && v.starts_with("--")) return true;
+    if (v == "--") return true;
+    return v.size() == 2 && v[0] == '-' && ((v[1] >= 'a' && v[1] <= 'z') || (v[1] >= 'A' && v[1] <= 'Z'));
 }
 
 }  // namespace
@@ -21,7 +23,7 @@ std::string option_value(std::span<const std::string_view> args, std::size_t& i,
     const std::string_view v = args[i + 1];
     if (looks_like_option(v)) {
         return std::string(name) + " needs a value, got the option '" + std::string(v) +
-               "' (a value that begins with '-': write it as ./" + std::string(v) + ")";
+               "' (a path that begins with '-' is written ./" + std::string(v) + ")";
     }
     value = v;
     ++i;

@@ -11,9 +11,9 @@ namespace jostle::game {
 
 // Reads the value of option `name` (args[i]) from args[i + 1] and moves i past it. Returns ""
 // and sets `value`, or the usage error: no value, an empty one, or another option in its
-// place (`--trace --quiet` would otherwise write a file named --quiet). A value that begins
-// with '-' followed by a digit or '.' is a negative number, left to the option's own check;
-// "-" alone is a value (standard input or output where the option allows it).
+// place (`--trace --quiet` would otherwise write a file named --quiet): "--NAME", or a dash
+// and one letter. Other values that begin with '-' ("-1", "-inf", "-" for standard input or
+// output where the option allows it) are left to the option's own check.
 std::string option_value(std::span<const std::string_view> args, std::size_t& i, std::string_view name,
                          std::string_view& value);
 

@@ -221,8 +221,11 @@ TEST(ClosestPointSegment, AnIntegerPointOnAnIntegerSegmentIsOnIt) {
     int checked = 0;
     for (int k = 0; k < 20000; ++k) {
         const auto coordinate = [&] { return static_cast<float>(static_cast<int>(rng.below(401)) - 200); };
-        const Vec2 a{coordinate(), coordinate()};
-        const Vec2 b{coordinate(), coordinate()};
+        // Near the origin, and far out (to 1e5, the documented range), on short segments.
+        const Vec2 shift = k % 2 == 0 ? Vec2{} : Vec2{static_cast<float>(static_cast<int>(rng.below(200001)) - 100000),
+                                                         static_cast<float>(static_cast<int>(rng.below(200001)) - 100000)};
+        const Vec2 a = Vec2{coordinate(), coordinate()} + shift;
+        const Vec2 b = Vec2{coordinate(), coordinate()} + shift;
         // The integer points on a-b: a + j (b - a) / g for g = gcd of the steps, 0 < j < g.
         const int dx = static_cast<int>(b.x - a.x), dy = static_cast<int>(b.y - a.y);
         const int g = std::gcd(std::abs(dx), std::abs(dy));

@@ -50,8 +50,13 @@ TEST_F(AtomicFileTest, CommitReplacesTheTargetWhole) {
 }
 
 TEST_F(AtomicFileTest, AReplacedFileKeepsItsPermissions) {
-    // Whatever the umask says, a private file stays private and a shared one shared.
+    // Whatever the umask says, a private file stays private and a shared one shared (set-id
+    // bits are not carried over to new contents).
     const mode_t umask_before = ::umask(022);
+    struct RestoreUmask {
+        mode_t mask;
+        ~RestoreUmask() { ::umask(mask); }
+    } restore{umask_before};
     for (const mode_t mode : {mode_t{0600}, mode_t{0640}, mode_t{0664}, mode_t{0755}}) {
         SCOPED_TRACE(mode);
         write_file_atomic(path("p.txt"), "old");
@@ -67,7 +72,11 @@ TEST_F(AtomicFileTest, AReplacedFileKeepsItsPermissions) {
     struct stat st{};
     ASSERT_EQ(::stat(path("fresh.txt").c_str(), &st), 0);
     EXPECT_EQ(st.st_mode & 07777, mode_t{0644});
-    ::umask(umask_before);
+    write_file_atomic(path("setid.txt"), "old");
+    ASSERT_EQ(::chmod(path("setid.txt").c_str(), 04755), 0);
+    write_file_atomic(path("setid.txt"), "new");
+    ASSERT_EQ(::stat(path("setid.txt").c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 07777, mode_t{0755});
 }
 
 TEST_F(AtomicFileTest, WithoutCommitNothingChanges) {

@@ -821,7 +821,7 @@ TEST_F(Check, UsageErrorsExitTwoWithTheirMessage) {
         {{s, "--report"}, "--report needs a value"},
         {{s, "--report", ""}, "--report needs a value"},
         {{s, "--report", "--update"},
-         "--report needs a value, got the option '--update' (a value that begins with '-': write it as ./--update)"},
+         "--report needs a value, got the option '--update' (a path that begins with '-' is written ./--update)"},
         {{s, "--jobs", "1", "--jobs", "2"}, "--jobs given twice"},
     };
     for (const Case& c : cases) {

@@ -120,8 +120,8 @@ TEST_F(Play, UsageErrorsExitTwoWithTheirMessage) {
     expect_usage_error({s, "--out", ""}, "--out needs a value");
     // An option in a value's place is not taken as a file name (that wrote a file '--quiet').
     expect_usage_error({s, "--trace", "--quiet"},
-                       "--trace needs a value, got the option '--quiet' (a value that begins with '-': write it as ./--quiet)");
-    expect_usage_error({s, "--out", "-h"}, "--out needs a value, got the option '-h' (a value that begins with '-': write it as ./-h)");
+                       "--trace needs a value, got the option '--quiet' (a path that begins with '-' is written ./--quiet)");
+    expect_usage_error({s, "--out", "-h"}, "--out needs a value, got the option '-h' (a path that begins with '-' is written ./-h)");
     // A value given twice is refused, not the last one silently kept.
     expect_usage_error({s, "--trace", "a.trace", "--trace", "b.trace"}, "--trace given twice");
     expect_usage_error({s, "--size", "4x4", "--size", "8x6"}, "--size given twice");

@@ -269,7 +269,7 @@ TEST_F(Record, UsageErrorsExitTwoWithTheirMessage) {
         EXPECT_EQ(r.err, usage_error(std::string(option) + " needs a value"));
     }
     expect_rejected({"--level", "arena", "-o", "--seed", s, script},
-                    usage_error("-o needs a value, got the option '--seed' (a value that begins with '-': write it as ./--seed)"));
+                    usage_error("-o needs a value, got the option '--seed' (a path that begins with '-' is written ./--seed)"));
     expect_rejected({"--level", "arena", "--level", "blob", "-o", kOut, s, script}, usage_error("--level given twice"));
     expect_rejected({"--level", "arena", "-o", kOut, "--out", kOut, s, script}, usage_error("-o (or --out) given twice"));
     // A negative number reaches the option's own check.

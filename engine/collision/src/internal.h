@@ -287,21 +287,14 @@ inline float segment_param(Vec2 a, Vec2 b, Vec2 p) {
 }
 
 // p minus the closest point of segment a-b to p, formed from differences so that it keeps
-// the precision of the distance even far from the origin. Beside the segment (its closest
-// point inside it) the offset is the part of p - a across the segment, from their cross
-// product: zero exactly for a point on the line whose cross product is exact (integer
-// coordinates), where p - a - t (b - a) is not (t = 3/21 rounds: a point on an integer segment
-// was 2.4e-7 off it, so a zero-radius circle there missed).
+// the precision of the distance even far from the origin. A point beside the segment whose
+// cross product with it is zero lies on its line: the offset is zero, where
+// p - a - t (b - a) is not (t = 3/21 rounds: a point on an integer segment was 2.4e-7 off it,
+// so a zero-radius circle there missed).
 inline Vec2 offset_from_segment(Vec2 a, Vec2 b, Vec2 p) {
-    const Vec2 d = b - a;
-    const Vec2 w = p - a;
     const float t = segment_param(a, b, p);
-    if (t > 0.0f && t < 1.0f) {
-        const float k = cross(d, w) / dot(d, d);
-        const Vec2 across{-d.y * k, d.x * k};
-        if (finite(across)) return across;  // (else the products overflowed: the parameter's form)
-    }
-    return w - t * d;
+    if (t > 0.0f && t < 1.0f && cross(b - a, p - a) == 0.0f) return {};
+    return (p - a) - t * (b - a);
 }
 
 // p minus the closest point of the polygon's boundary (09-90: the nearest of the closest

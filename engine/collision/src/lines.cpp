@@ -105,12 +105,10 @@ Vec2 closest_point(const Segment& seg, Vec2 p) {
     // endpoint; as a clamped parameter along the segment, which is the same thing.
     if (!valid(seg) || !finite(p)) return {};
     const float t = detail::segment_param(seg.a, seg.b, p);
-    if (t == 0.0f) return seg.a;
-    if (t == 1.0f) return seg.b;
-    // Inside: p less its offset across the segment (p itself when it lies on an integer
-    // segment, which a + t (b - a) misses by t's rounding).
-    const Vec2 q = p - detail::offset_from_segment(seg.a, seg.b, p);
-    return finite(q) ? q : seg.a + t * (seg.b - seg.a);
+    // Inside, on the segment's line (a zero cross product): p itself, which a + t (b - a)
+    // misses by t's rounding on an integer segment.
+    if (t > 0.0f && t < 1.0f && cross(seg.b - seg.a, p - seg.a) == 0.0f) return p;
+    return t == 1.0f ? seg.b : seg.a + t * (seg.b - seg.a);
 }
 
 Vec2 closest_point_on(const Circle& c, Vec2 q) {

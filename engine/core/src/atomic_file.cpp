@@ -170,9 +170,15 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
     const std::string& place = resolved.empty() ? path_ : resolved;
     rename_to_ = place;
     const std::string prefix = place + "." + std::to_string(::getpid()) + ".";
+    // A file being replaced keeps its permissions (a private 0600 file stays private): the new
+    // one is made private, so that no one opens it meanwhile, then takes the old one's
+    // permission bits (not set-id bits: the contents are new). Best effort: a file system that
+    // refuses leaves it private. Its group and other names (hard links) stay the old file's.
+    struct stat old{};
+    const bool replacing = ::stat(place.c_str(), &old) == 0 && S_ISREG(old.st_mode);
     for (int attempt = 0; attempt < 100; ++attempt) {
         std::string name = prefix + std::to_string(attempt) + ".tmp";
-        const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, replacing ? 0600 : 0666);
         if (fd < 0) {
             if (errno == EEXIST) continue;
             const int e = errno;
@@ -182,17 +188,7 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
             fail("cannot create a file in " + folder + ": " + std::strerror(e));
         }
         temp_path_ = std::move(name);
-        // A file being replaced keeps its permissions (a private 0600 file stays private): the
-        // new one takes them, not the umask's default. (Its other names, hard links, keep the
-        // old contents: the rename gives the path a new file.)
-        struct stat old{};
-        if (::stat(place.c_str(), &old) == 0 && S_ISREG(old.st_mode) && ::fchmod(fd, old.st_mode & 07777) != 0) {
-            const int e = errno;
-            ::close(fd);
-            ::unlink(temp_path_.c_str());
-            temp_path_.clear();
-            fail("cannot give the new file the old one's permissions: " + std::string(std::strerror(e)));
-        }
+        if (replacing) (void)::fchmod(fd, old.st_mode & 0777);
         file_ = ::fdopen(fd, "wb");
         if (file_ == nullptr) {
             const int e = errno;

@@ -107,9 +107,9 @@
 //   coordinates alone are not enough: SAT's unit axes are rounded for any edge that is not
 //   axis-aligned, so a segment touching another at an integer point may be a miss for
 //   collide() and a hit for intersect() or cast(), which decide on cross products. A point
-//   (a zero-radius circle, a point segment, a zero-length cast) with integer coordinates on a
-//   segment with integer ends is on it for every query: its offset from the segment is taken
-//   across it, by a cross product. Degenerate input
+//   with integer coordinates on a segment with integer ends (lengths within 2^12) is on it
+//   for closest_point, intersect() with a point segment, cast() of zero length and the
+//   circle queries with radius 0: a zero cross product puts it on the line. Degenerate input
 //   (zero length, zero radius, coincident centres, parallel edges) has a defined result:
 //   coincident circle centres use normal {1, 0}. Any NaN or infinite coordinate in a shape
 //   makes it hit nothing (a miss, all zeros), never undefined behaviour; closest_point then
