@@ -941,6 +941,78 @@ TEST(MaskShapes, CollideMatchesExhaustiveSearch) {
     EXPECT_GT(hits, 250);
 }
 
+// A segment or a sliver holds no pixel inside it, so crossing a solid mask the search jumps by
+// the mask's own runs of set pixels: dense masks make those runs long (a jump one too long
+// fails here).
+TEST(MaskShapes, ThinShapesAcrossDenseMasksMatchTheExhaustiveSearch) {
+    Rng rng(7177);
+    int hits = 0;
+    int slivers = 0;
+    for (int n = 0; n < 300; ++n) {
+        const Mask m = random_mask(rng, uniform_int(rng, 3, 12), uniform_int(rng, 3, 12), 75);
+        const PlacedMask p{&m, uniform_int(rng, -2, 2), uniform_int(rng, -2, 2)};
+        // From one side of the mask to the other, across x or across y.
+        const float w = static_cast<float>(m.width()), h = static_cast<float>(m.height());
+        const float x = static_cast<float>(p.x), y = static_cast<float>(p.y);
+        Vec2 a{grid(rng, x - 2, x + 1), grid(rng, y - 2, y + h + 2)};
+        Vec2 b{grid(rng, x + w - 1, x + w + 2), grid(rng, y - 2, y + h + 2)};
+        if (n % 4 >= 2) {
+            a = {grid(rng, x - 2, x + w + 2), grid(rng, y - 2, y + 1)};
+            b = {grid(rng, x - 2, x + w + 2), grid(rng, y + h - 1, y + h + 2)};
+        }
+        Manifold got;
+        PixelTest test;
+        double bcx = 0.0, bcy = 0.0;
+        const std::optional<Polygon> sliver = n % 2 == 0 ? hull_polygon({a, b, a + Vec2{0.5f, -0.375f}}) : std::nullopt;
+        if (sliver) {
+            ++slivers;
+            got = collide(p, *sliver);
+            test = pixel_test(*sliver);
+            for (const Vec2 q : sliver->points()) {
+                bcx += q.x / 3.0;
+                bcy += q.y / 3.0;
+            }
+        } else {
+            const Segment s{a, b};
+            got = collide(p, s);
+            test = pixel_test(s);
+            bcx = 0.5 * (static_cast<double>(s.a.x) + s.b.x);
+            bcy = 0.5 * (static_cast<double>(s.a.y) + s.b.y);
+        }
+        const auto want = brute_mtd(m, p.x, p.y, test, bcx, bcy);
+        ASSERT_EQ(got.hit, want.has_value()) << "case " << n;
+        if (!want) continue;
+        ++hits;
+        SCOPED_TRACE("case " + std::to_string(n));
+        expect_translation(got, (*want)[0], (*want)[1]);
+    }
+    EXPECT_GT(hits, 200);
+    EXPECT_GT(slivers, 120);
+}
+
+// A thin mask under a solid one, both ways round: the jump reads either mask's column.
+TEST(MaskMtd, LinesAcrossSolidMasksEqualReference) {
+    Rng rng(9090);
+    for (int n = 0; n < 300; ++n) {
+        const Mask solid = random_mask(rng, uniform_int(rng, 4, 14), uniform_int(rng, 4, 14), 85);
+        Mask line(uniform_int(rng, 4, 14), uniform_int(rng, 4, 14));
+        const int steps = std::max(line.width(), line.height());
+        const int x0 = uniform_int(rng, 0, line.width() - 1), y0 = uniform_int(rng, 0, line.height() - 1);
+        const int x1 = uniform_int(rng, 0, line.width() - 1), y1 = uniform_int(rng, 0, line.height() - 1);
+        for (int k = 0; k <= steps; ++k)  // a digital line from (x0, y0) to (x1, y1)
+            line.set(x0 + (x1 - x0) * k / steps, y0 + (y1 - y0) * k / steps, true);
+        const PlacedMask ps{&solid, uniform_int(rng, -3, 3), uniform_int(rng, -3, 3)};
+        const PlacedMask pl{&line, uniform_int(rng, -3, 3), uniform_int(rng, -3, 3)};
+        for (const auto& [pa, pb] : {std::pair{ps, pl}, std::pair{pl, ps}}) {
+            const Manifold fast = collide(pa, pb);
+            const Manifold slow = reference::collide(pa, pb);
+            ASSERT_EQ(fast.hit, slow.hit) << "case " << n;
+            ASSERT_EQ(fast.depth, slow.depth) << "case " << n;
+            ASSERT_EQ(fast.normal, slow.normal) << "case " << n;
+        }
+    }
+}
+
 TEST(MaskShapes, DeepInsideLargeShapes) {
     Mask m(8, 8);
     for (int y = 0; y < 8; ++y)

@@ -3,6 +3,7 @@
 // slide's perpendicular corrected), and circles swept against boxes, polygons and segments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -80,6 +81,34 @@ TEST(SweepCircle, Grazing) {
     // A hair closer it moves into B: F = 1.99, G = sqrt(4 - 3.9601) = 0.19975, t = (5 - G)/10.
     EXPECT_TRUE(is_sweep(sweep(kMoving, {10, 0}, Circle{{5, 1.99f}, 1}), 0.480025f, {4.80025f + 0.09988f, 0.99499f},
                          {0.09988f, 0.995f}, 1e-4f, 1e-3f));
+}
+
+// Slanted paths that graze exactly: integer motion and centres with cross(v, c)^2 = R^2 |v|^2,
+// so F = R. The slide's F from the rounded unit vector was a hair short on 32 of these 1464,
+// which then hit at a slant of a few 1e-4 (from (0,0) by (6,8) past (7,6): t = 0.9). The
+// same path past a circle 0.01 larger is a hit.
+TEST(SweepCircle, SlantedExactGrazesMissAndHitOnceTheCircleGrows) {
+    int grazes = 0;
+    for (int vx = -20; vx <= 20; ++vx)
+        for (int vy = -20; vy <= 20; ++vy)
+            for (int cx = -10; cx <= 10; ++cx)
+                for (int cy = -10; cy <= 10; ++cy) {
+                    const long v2 = long{vx} * vx + long{vy} * vy;
+                    const long c = long{vx} * cy - long{vy} * cx;  // cross(v, centre)
+                    const long d = long{vx} * cx + long{vy} * cy;  // dot(v, centre)
+                    if (v2 == 0 || c * c != 4 * v2 || d <= 0 || d > v2) continue;
+                    ++grazes;
+                    const Vec2 v{static_cast<float>(vx), static_cast<float>(vy)};
+                    const Vec2 centre{static_cast<float>(cx), static_cast<float>(cy)};
+                    EXPECT_TRUE(is_miss(sweep(kMoving, v, Circle{centre, 1}))) << vx << "," << vy << " " << cx << "," << cy;
+                    // With radius 1.01 the path goes 0.01 in: G = sqrt(2.01^2 - 4), t = (D - G) / |v|.
+                    const SweepHit in = sweep(kMoving, v, Circle{centre, 1.01f});
+                    const double speed = std::sqrt(static_cast<double>(v2));
+                    const double t = (static_cast<double>(d) / speed - std::sqrt(2.01 * 2.01 - 4.0)) / speed;
+                    EXPECT_TRUE(in.hit);
+                    EXPECT_NEAR(in.t, std::max(0.0, t), 1e-4) << vx << "," << vy << " " << cx << "," << cy;
+                }
+    EXPECT_EQ(grazes, 1464);
 }
 
 TEST(SweepCircle, TooShort) {

@@ -182,6 +182,18 @@ int first_set_at_or_after(const u64* row, int words, int c) {
     }
 }
 
+// How many pixels from (i, j) on, stepping `step` rows (+1 down, -1 up), are set in a row,
+// counting (i, j) itself (0 when it is clear). The MTD search's jump: a translation that puts a
+// set pixel on a blocked world pixel is blocked, so moving a mask against its own run of set
+// pixels keeps one of them on that world pixel for run - 1 more steps.
+i64 column_run(const Mask& m, int i, int j, int step) {
+    const int shift = i & 63;
+    const auto word = static_cast<std::size_t>(i >> 6);
+    i64 run = 0;
+    for (; j >= 0 && j < m.height() && ((m.row(j)[word] >> shift) & 1) != 0; j += step) ++run;
+    return run;
+}
+
 // A mask at a world position; i64 so that a translated position never overflows.
 struct Placed {
     const Mask* m = nullptr;
@@ -1266,12 +1278,13 @@ struct MaskPairProblem {
         Offset at = kNone;
         if (SharedWords s; share_words(moved, b, s)) at = dir > 0 ? first_shared(s) : last_row_first_shared(s);
         if (!at.found()) return false;
-        // A's pixel there stays on B's pixels while B's column runs on in the scan direction.
-        const int bx = static_cast<int>(std::max(ax, b.x) + at.col - b.x);
-        const int by = static_cast<int>(std::max(ay, b.y) + at.row - b.y);
-        int run = 1;
-        while (b.m->get(bx, by + dir * run)) ++run;
-        jump = run;
+        // A's pixel there stays on B's pixels while B's column runs on in the scan direction,
+        // and B's pixel stays under A's while A's column runs on against it: either run is a
+        // jump (a thin B under a solid A needs the second).
+        const i64 wx = std::max(ax, b.x) + at.col;
+        const i64 wy = std::max(ay, b.y) + at.row;
+        jump = std::max(column_run(*b.m, static_cast<int>(wx - b.x), static_cast<int>(wy - b.y), dir),
+                        column_run(*a.m, static_cast<int>(wx - ax), static_cast<int>(wy - ay), -dir));
         return true;
     }
 };
@@ -1725,13 +1738,20 @@ struct RegionProblem {
         if (left + R::kNear > r->bounds.max_x || right + R::kFar < r->bounds.min_x ||
             top + R::kNear > r->bounds.max_y || bottom + R::kFar < r->bounds.min_y)
             return false;
+        int wi = 0;
         int wj = 0;
-        const bool hit = visit_region_words(*m, x + dx, y + dy, *r, box, dir < 0, [&](int j, int, u64) {
+        const bool hit = visit_region_words(*m, x + dx, y + dy, *r, box, dir < 0, [&](int j, int i, u64 w) {
+            wi = i + std::countr_zero(w);
             wj = j;
             return true;
         });
         if (!hit) return false;
+        // The witness pixel's column in the mask: its set pixels behind it (against the scan)
+        // take its place on the region in turn. It is what lets a segment or a sliver, which
+        // holds no pixel inside, cross a solid mask in a few tests a column.
+        // (A solid region's chord usually gives more, and a run is at most the rows behind.)
         if constexpr (R::kSolid) jump = solid_jump(dx, dy, dir, wj);
+        if (jump < (dir > 0 ? wj - box.y0 : box.y1 - wj) + 1) jump = std::max(jump, column_run(*m, wi, wj, -dir));
         return true;
     }
 

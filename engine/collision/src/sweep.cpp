@@ -17,13 +17,18 @@ detail::CircleContact detail::first_contact_with_circle(Vec2 offset, Vec2 v, flo
     const float speed = length(v);
     if (!(speed > 0.0f)) return {};
     const Vec2 dir{v.x / speed, v.y / speed};
+    // D and F are v's dot and cross products with offset, over |v|, the products exact in
+    // double: from the rounded unit vector dir, F was off by an ulp of dir times |offset|, and
+    // a path that grazes exactly (F = R) got a G of the square root of that and hit at a slant
+    // of a few 1e-4. Integer input that grazes now has F = R exactly.
+    const double vx = v.x, vy = v.y, ox = offset.x, oy = offset.y;
     // 09-114: moving apart (or sideways) can never close the gap.
-    const float D = dot(dir, offset);
+    const auto D = static_cast<float>((vx * ox + vy * oy) / speed);
     if (D <= 0.0f) return {};
     // 09-118/121: F is the distance from the static centre to the line of motion. The slide's
     // F^2 = |C_s - C_d|^2 - D^2 cancels badly when the line passes close to the centre or the
     // path is long; the cross product gives the same F without the cancellation.
-    const float F = cross(dir, offset);
+    const auto F = static_cast<float>((vx * oy - vy * ox) / speed);
     const float F2 = F * F;
     if (F2 > radius * radius) return {};
     // 09-122: G^2 = (r_s + r_d)^2 - F^2; first contact after travelling D - G.
