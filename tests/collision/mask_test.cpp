@@ -1202,6 +1202,11 @@ TEST(MaskShapes, NonFiniteShapesAndEmptyMasksMiss) {
         Circle{{1, 1}, -1},
         Segment{{0, 0}, {nan, 1}},
         triangle({0, 0}, {5, 0}, {0, 5}),
+        // Malformed by the module's one rule (detail::valid), as for every other query.
+        Obb{{1, 1}, {-1, 5}, 0},
+        Obb{{1, 1}, {2e38f, 1}, 0.5f},
+        Aabb{{2, 2}, {0, 0}},
+        Segment{{-3e38f, 0}, {3e38f, 0}},
     };
     for (std::size_t k = 0; k < bad.size(); ++k) {
         Shape s = bad[k];

@@ -19,6 +19,7 @@
 #include <immintrin.h>
 #endif
 
+#include "internal.h"
 #include "jostle/collision.h"
 #include "jostle/core/error.h"
 
@@ -1611,12 +1612,14 @@ std::optional<SegmentRegion> raw_region_of(const Segment& s) {
 }
 
 // Shapes reaching beyond +-1e9 px (far outside the coordinate limits) are no region either:
-// the pixel search there would run for ever or overflow, and a miss is a defined answer.
+// the pixel search there would run for ever or overflow, and a miss is a defined answer. So is
+// a shape the other queries call malformed (detail::valid: the module's one rule).
 constexpr double kMaxRegionCoordinate = 1e9;
 
 template <class S>
 auto region_of(const S& shape) {
     auto r = raw_region_of(shape);
+    if (r && !detail::valid(shape)) r.reset();
     if (r && !(std::abs(r->bounds.min_x) <= kMaxRegionCoordinate && std::abs(r->bounds.min_y) <= kMaxRegionCoordinate &&
                std::abs(r->bounds.max_x) <= kMaxRegionCoordinate && std::abs(r->bounds.max_y) <= kMaxRegionCoordinate)) {
         r.reset();
