@@ -969,6 +969,21 @@ TEST_F(Check, ReportShowsTheFailingScenarioWithItsImages) {
     for (std::size_t at = xml.find("<failure "); at != std::string::npos; at = xml.find("<failure ", at + 1)) ++failures;
     EXPECT_EQ(failures, 1u);
     EXPECT_THAT(xml, HasSubstr("<failure message=\"regression\">FAIL " + fail + " (30 ticks"));
+
+    // The same folder again once fail.scn is re-blessed and a third scenario fails: the first
+    // report's images go (they would read as this run's failures), the user's files stay.
+    bless(fail);
+    const std::string other = scenario("other.scn", kDrive);
+    bless(other);
+    scenario("other.scn", kDriveLater);
+    for (const char* mine : {"notes.txt", "fail.tick_29.png", "fail.tick_29.orig.png", "fail.tick_x.diff.png"})
+        std::ofstream(report / mine) << "mine";
+    const RunResult again = check({folder(), "--report", report.string()});
+    EXPECT_EQ(again.status, 1);
+    EXPECT_EQ(listing(report), (std::vector<std::string>{"fail.tick_29.orig.png", "fail.tick_29.png", "fail.tick_x.diff.png",
+                                                         "junit.xml", "notes.txt", "other.tick_25.actual.png",
+                                                         "other.tick_29.actual.png", "other.tick_29.diff.png",
+                                                         "other.tick_29.expected.png", "report.html"}));
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include "jostle/core/atomic_file.h"
 #include "jostle/core/error.h"
@@ -457,6 +458,31 @@ void create_report_folder(const std::string& folder) {
     if (ec) throw InputError(SourceLocation{folder, 0, 0}, "cannot create the report folder: " + ec.message());
 }
 
+namespace {
+
+// An earlier report's images in the folder that this one does not show: NAME.tick_T.expected,
+// .actual or .diff .png, the names write_report gives them. Left there they would read as
+// this run's failures (a CI job that uploads the folder). Any other file is the user's and
+// stays; one that cannot be removed stays too (the report itself is already written).
+void remove_stale_report_images(const std::string& folder, const std::set<std::string>& shown) {
+    std::vector<fs::path> stale;
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        const std::size_t tick = name.rfind(".tick_");
+        std::error_code type_ec;
+        if (tick == std::string::npos || shown.count(name) != 0 || !it->is_regular_file(type_ec)) continue;
+        const std::string_view rest = std::string_view(name).substr(tick + 6);
+        const std::size_t digits = rest.find_first_not_of("0123456789");
+        if (digits == 0 || digits == std::string_view::npos) continue;
+        const std::string_view kind = rest.substr(digits);
+        if (kind == ".expected.png" || kind == ".actual.png" || kind == ".diff.png") stale.push_back(it->path());
+    }
+    for (const fs::path& file : stale) fs::remove(file, ec);  // best effort, as said above
+}
+
+}  // namespace
+
 void write_report(const std::string& folder, const std::vector<ScenarioCheck>& checks) {
     create_report_folder(folder);
     std::ostringstream html;
@@ -469,6 +495,11 @@ void write_report(const std::string& folder, const std::vector<ScenarioCheck>& c
     for (const ScenarioCheck& c : checks) failed += c.passed() ? 0 : 1;
     html << "<h1>jostle check: " << failed << " of " << counted(static_cast<std::int64_t>(checks.size()), "scenario") << " failed</h1>\n";
     std::set<std::string> ids;  // scenarios of the same name from different folders get _2, _3...
+    std::set<std::string> images;  // the image files this report shows
+    const auto write_image = [&](const std::string& name, const Image& image) {
+        write_png_atomic((fs::path(folder) / name).string(), image);
+        images.insert(name);
+    };
     for (const ScenarioCheck& c : checks) {
         if (c.passed()) continue;
         std::string id = c.name;
@@ -502,16 +533,15 @@ void write_report(const std::string& folder, const std::vector<ScenarioCheck>& c
             const std::string base = id + ".tick_" + std::to_string(i.tick);
             html << "<h3>screenshot at tick " << i.tick << "</h3>\n<div class=\"images\">\n";
             if (!i.golden_missing) {
-                write_png_atomic((fs::path(folder) / (base + ".expected.png")).string(), i.expected);
-                write_png_atomic((fs::path(folder) / (base + ".diff.png")).string(),
-                                 diff_image(i.expected, i.actual));
+                write_image(base + ".expected.png", i.expected);
+                write_image(base + ".diff.png", diff_image(i.expected, i.actual));
                 html << "<figure><img class=\"expected\" src=\"" << html_escape(url_escape(base)) << ".expected.png\"><figcaption>expected</figcaption></figure>\n";
             } else {
                 html << "<figure><figcaption>expected: "
                      << (i.golden_error.empty() ? "no golden" : "unreadable golden: " + html_escape(i.golden_error))
                      << "</figcaption></figure>\n";
             }
-            write_png_atomic((fs::path(folder) / (base + ".actual.png")).string(), i.actual);
+            write_image(base + ".actual.png", i.actual);
             html << "<figure><img class=\"actual\" src=\"" << html_escape(url_escape(base)) << ".actual.png\"><figcaption>actual</figcaption></figure>\n";
             if (!i.golden_missing) {
                 html << "<figure><img class=\"diff\" src=\"" << html_escape(url_escape(base)) << ".diff.png\"><figcaption>diff</figcaption></figure>\n";
@@ -540,6 +570,7 @@ void write_report(const std::string& folder, const std::vector<ScenarioCheck>& c
     }
     xml << "</testsuite>\n</testsuites>\n";
     write_file_atomic((fs::path(folder) / "junit.xml").string(), xml.str());
+    remove_stale_report_images(folder, images);
 }
 
 }  // namespace jostle

@@ -125,7 +125,8 @@ std::vector<std::string> select_shard(const std::vector<std::string>& scenarios)
 
 // The failure report under `folder`: report.html (per failing scenario: its first divergent
 // tick and field changes, failed expectations, and expected / actual / diff images side by
-// side), the images it shows, and junit.xml with every scenario. Written atomically.
+// side), the images it shows, and junit.xml with every scenario. Written atomically; then an
+// earlier report's images in the folder that this one does not show are removed.
 void write_report(const std::string& folder, const std::vector<ScenarioCheck>& checks);
 // Makes the report's folder (as write_report does, with its InputError), so that a --report
 // that cannot be written is found before the scenarios are run.
