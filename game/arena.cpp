@@ -128,7 +128,7 @@ public:
                     break;
                 case LevelThing::Kind::prop:
                     if (!sprites_.has(t.sprite)) {
-                        throw InputError(SourceLocation{level_path, t.line, 0},
+                        throw InputError(SourceLocation{level_path, t.line, t.sprite_column},
                                          "no sprite '" + t.sprite + "' (expected a file sprites/" + t.sprite + ".png in the assets)");
                     }
                     add(Thing{.name = t.name, .kind = Kind::prop, .sprite = t.sprite},
@@ -137,7 +137,7 @@ public:
                     break;
                 case LevelThing::Kind::blob:
                     if (!sprites_.has("blob")) {
-                        throw InputError(SourceLocation{level_path, t.line, 0},
+                        throw InputError(SourceLocation{level_path, t.line, t.sprite_column},
                                          "no sprite 'blob' (expected a file sprites/blob.png in the assets)");
                     }
                     add(Thing{.name = t.name, .kind = Kind::blob, .speed = t.speed, .from = t.position, .to = t.size},

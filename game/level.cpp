@@ -263,6 +263,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             take_name();
             thing.kind = LevelThing::Kind::prop;
             thing.sprite = std::string(r.word(2).text);
+            thing.sprite_column = r.word(2).column;
             thing.position = {r.coordinate(3), r.coordinate(4)};
         } else if (head == "blob") {
             r.expect_words(7, 7, "blob NAME X0 Y0 X1 Y1 SPEED");

@@ -455,7 +455,7 @@ TEST_F(Arena, PropsAndBlobsNeedTheirSprites) {
         game.start("treed", 1, 60);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), level + ":6: no sprite 'tree' (expected a file sprites/tree.png in the assets)");
+        EXPECT_EQ(std::string(e.what()), level + ":6:9: no sprite 'tree' (expected a file sprites/tree.png in the assets)");
     }
     EXPECT_THROW(game.start("blobbed", 1, 60), InputError);
     // With the sprites they start, and a sprite changes the level's hash.

@@ -175,7 +175,7 @@ TEST_F(Play, BadInputExitsTwoNamingFileAndLine) {
     r = play({lives});
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(r.out, "");
-    EXPECT_EQ(r.err, "jostle play: " + lives + ":8: unknown game variable 'lives' (expected one of: score, shots, balls, fastest, touches)\n");
+    EXPECT_EQ(r.err, "jostle play: " + lives + ":8:17: unknown game variable 'lives' (expected one of: score, shots, balls, fastest, touches)\n");
 
     // The levels come from --assets: a level unknown there, and a broken level file.
     const fs::path assets = dir_.path() / "assets";
@@ -637,14 +637,14 @@ TEST_F(Play, AMisspeltEntityIsRefusedBeforeTheRun) {
     const std::string frames = path("frames");
     const RunResult r = play({s, "--out", frames, "--quiet"});
     EXPECT_EQ(r.status, 2);
-    EXPECT_EQ(r.err, "jostle play: " + s + ":8: unknown entity 'plyer': no entity of this run can have that name (the dumps "
+    EXPECT_EQ(r.err, "jostle play: " + s + ":8:13: unknown entity 'plyer': no entity of this run can have that name (the dumps "
                      "of 'jostle play --trace' name every entity)\n");
     EXPECT_FALSE(fs::exists(frames));
     // One the game gives, but not by then (no shot fired): refused at its tick.
     const std::string early = scenario("early.scn", "0-9 up\nat 9 expect bullet_1 gone\nat 10 end\n");
     const RunResult e = play({early, "--quiet"});
     EXPECT_EQ(e.status, 2);
-    EXPECT_EQ(e.err, "jostle play: " + early + ":8: no entity named 'bullet_1' has been in the run by tick 9 (a misspelt "
+    EXPECT_EQ(e.err, "jostle play: " + early + ":8:13: no entity named 'bullet_1' has been in the run by tick 9 (a misspelt "
                      "name? the dumps of 'jostle play --trace' name every entity)\n");
 }
 

@@ -601,7 +601,7 @@ TEST_F(Record, AnExpectationNamingWhatTheGameLacksIsBadInput) {
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(r.out, "");
     // The script and its line, checked as the script is played (not the unwritten output file).
-    EXPECT_EQ(r.err, "jostle record: " + script + ":2: unknown game variable 'lives' (expected one of: score, shots, balls, fastest, touches)\n");
+    EXPECT_EQ(r.err, "jostle record: " + script + ":2:12: unknown game variable 'lives' (expected one of: score, shots, balls, fastest, touches)\n");
     EXPECT_FALSE(fs::exists(out));
     EXPECT_EQ(listing(), (std::vector<std::string>{"lives.script"}));  // no temporary file left either
 }
@@ -629,7 +629,7 @@ TEST_F(Record, AKeptExpectationOnAnEntityNotYetThereIsBadInputInItsFile) {
     const std::string out = path("new.scn");
     const RunResult r = run_record({"--from", old_scn, "--at", "8", "-o", out, "--script", more});
     EXPECT_EQ(r.status, 2);
-    EXPECT_EQ(r.err, "jostle record: " + old_scn + ":9: no entity named 'bullet_1' has been in the run by tick 5 (a misspelt "
+    EXPECT_EQ(r.err, "jostle record: " + old_scn + ":9:13: no entity named 'bullet_1' has been in the run by tick 5 (a misspelt "
                      "name? the dumps of 'jostle play --trace' name every entity)\n");
     EXPECT_FALSE(fs::exists(out));
 }

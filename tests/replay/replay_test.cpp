@@ -235,14 +235,14 @@ TEST_F(Replay, AllPassingOrNoExpectationsPass) {
 TEST_F(Replay, ExpectationsNamingWhatTheGameDoesNotHaveAreBadInputBeforeAnyTick) {
     ReplayOptions o = null_options();
     EXPECT_EQ(error_of(scenario("0 a\n\nat 5 expect count tree > 0\n"), o),
-              "s.scn:9: unknown entity kind 'tree' (expected one of: rock, crate)");
+              "s.scn:9:19: unknown entity kind 'tree' (expected one of: rock, crate)");
     EXPECT_EQ(error_of(scenario("at 5 expect var lives = 3\n"), o),
-              "s.scn:7: unknown game variable 'lives' (expected one of: score, half)");
+              "s.scn:7:17: unknown game variable 'lives' (expected one of: score, half)");
     EXPECT_EQ(error_of(scenario("at 2 expect event boom\nat 5 expect event bam\n"), o),
-              "s.scn:8: unknown event 'bam' (expected one of: boom, bang)");
+              "s.scn:8:19: unknown event 'bam' (expected one of: boom, bang)");
     // An entity name the game never gives (a typo would make `gone` pass).
     EXPECT_EQ(error_of(scenario("0 a\nat 9 expect playr gone\n"), o),
-              "s.scn:8: unknown entity 'playr': no entity of this run can have that name (the dumps of 'jostle play "
+              "s.scn:8:13: unknown entity 'playr': no entity of this run can have that name (the dumps of 'jostle play "
               "--trace' name every entity)");
     EXPECT_TRUE(log_.inputs.empty());  // refused before the first tick
 }
@@ -252,11 +252,11 @@ TEST_F(Replay, ExpectationsNamingWhatTheGameDoesNotHaveAreBadInputBeforeAnyTick)
 TEST_F(Replay, AnEntityNoEntityHasHadByTheExpectationsTickIsBadInput) {
     const ReplayOptions o = null_options();
     const std::string hint = " (a misspelt name? the dumps of 'jostle play --trace' name every entity)";
-    EXPECT_EQ(error_of(scenario("at 2 expect ghost gone\n"), o), "s.scn:7: no entity named 'ghost' has been in the run by tick 2" + hint);
+    EXPECT_EQ(error_of(scenario("at 2 expect ghost gone\n"), o), "s.scn:7:13: no entity named 'ghost' has been in the run by tick 2" + hint);
     EXPECT_EQ(log_.inputs.size(), 3u);  // found at its tick
     EXPECT_EQ(error_of(scenario("at 1 expect player alive\nat 3 expect ghost alive\n"), o),
-              "s.scn:8: no entity named 'ghost' has been in the run by tick 3" + hint);
-    EXPECT_EQ(error_of(scenario("at 4 expect ghost in 0 0 1 1\n"), o), "s.scn:7: no entity named 'ghost' has been in the run by tick 4" + hint);
+              "s.scn:8:13: no entity named 'ghost' has been in the run by tick 3" + hint);
+    EXPECT_EQ(error_of(scenario("at 4 expect ghost in 0 0 1 1\n"), o), "s.scn:7:13: no entity named 'ghost' has been in the run by tick 4" + hint);
     // From tick 5 on, ghost has been in the run (the fake's rule): gone is a check that passes.
     const ReplayResult r = replay(game_, scenario("at 5 expect ghost gone\nat 6 expect ghost alive\nat 7 end\n"), o);
     ASSERT_EQ(r.expectations.size(), 2u);

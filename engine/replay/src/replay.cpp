@@ -98,14 +98,14 @@ void validate_expectation(const Expectation& e, const Simulation& sim, const std
         what = "event";
     } else {
         if (!sim.entity_name_possible(e.name)) {
-            throw InputError(SourceLocation{source, e.line, 0},
+            throw InputError(SourceLocation{source, e.line, e.column},
                              "unknown entity '" + e.name +
                                  "': no entity of this run can have that name (the dumps of 'jostle play --trace' name every entity)");
         }
         return;
     }
     if (std::find(known.begin(), known.end(), e.name) == known.end()) {
-        throw InputError(SourceLocation{source, e.line, 0},
+        throw InputError(SourceLocation{source, e.line, e.column},
                          std::string("unknown ") + what + " '" + e.name + "' (expected one of: " + join(known) + ")");
     }
 }
@@ -113,7 +113,7 @@ void validate_expectation(const Expectation& e, const Simulation& sim, const std
 void validate_entity_name(const Expectation& e, const Simulation& sim, const std::string& source) {
     if (e.kind != Expectation::Kind::in_region && e.kind != Expectation::Kind::alive && e.kind != Expectation::Kind::gone) return;
     if (sim.entity_named(e.name)) return;
-    throw InputError(SourceLocation{source, e.line, 0},
+    throw InputError(SourceLocation{source, e.line, e.column},
                      "no entity named '" + e.name + "' has been in the run by tick " + std::to_string(e.tick) +
                          " (a misspelt name? the dumps of 'jostle play --trace' name every entity)");
 }

@@ -131,6 +131,7 @@ Expectation parse_expect(const Parser& p, std::string_view line, const std::vect
         p.expect_count(words, 5, form(subject == "count" ? "expect count KIND OP N" : "expect var NAME OP VALUE").c_str());
         e.kind = subject == "count" ? Expectation::Kind::count : Expectation::Kind::variable;
         e.name = std::string(words[2].text);
+        e.column = words[2].column;
         e.comparison = p.comparison(words[3]);
         e.value = p.number(words[4]);
         // A count of entities is whole and not negative: 'count bullet = 1.5' could never hold.
@@ -141,8 +142,10 @@ Expectation parse_expect(const Parser& p, std::string_view line, const std::vect
         p.expect_count(words, 3, form("expect event NAME").c_str());
         e.kind = Expectation::Kind::event;
         e.name = std::string(words[2].text);
+        e.column = words[2].column;
     } else {
         e.name = std::string(subject);
+        e.column = words[1].column;
         const std::string_view verb = words[2].text;
         if (verb == "alive" || verb == "gone") {
             p.expect_count(words, 3, form("expect NAME alive|gone").c_str());

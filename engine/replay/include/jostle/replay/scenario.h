@@ -77,6 +77,7 @@ struct Expectation {
     Comparison comparison = Comparison::eq;  // count, variable
     double value = 0.0;                      // count, variable
     int line = 0;        // where it was written
+    int column = 0;      // where its name was written (the game checks the name, after parsing)
     std::string text;    // as written after "expect ", for reports: "player alive"
 };
 
