@@ -3,7 +3,6 @@
 #include "check.h"
 
 #include <atomic>
-#include <charconv>
 #include <cstdlib>
 #include <csignal>
 #include <filesystem>
@@ -26,13 +25,6 @@ namespace {
 int usage(std::ostream& err, const std::string& message) {
     err << "jostle check: " << message << "\nRun 'jostle check --help' for usage.\n";
     return 2;
-}
-
-std::optional<std::int64_t> parse_whole(std::string_view text, std::int64_t lo, std::int64_t hi) {
-    std::int64_t v = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc{} || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
-    return v;
 }
 
 }  // namespace
@@ -112,22 +104,19 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
                 options.update_options = {"--assets", assets};  // for the hints' 'jostle check --update'
             }
             if (a == "--jobs") {
-                const auto n = parse_whole(v, 1, 256);
-                if (!n) return usage(err, "--jobs: expected a whole number from 1 to 256, got '" + std::string(v) + "'");
-                jobs = *n;
+                const auto n = game::parse_whole(v, 1, 256);
+                if (!n) return usage(err, game::whole_number_error("--jobs", "1", "256", v));
+                jobs = static_cast<int>(*n);
             }
             if (a == "--tolerance") {
-                const auto n = parse_whole(v, 0, 255);
-                if (!n) return usage(err, "--tolerance: expected a whole number from 0 to 255, got '" + std::string(v) + "'");
+                const auto n = game::parse_whole(v, 0, 255);
+                if (!n) return usage(err, game::whole_number_error("--tolerance", "0", "255", v));
                 options.image_tolerance.max_channel_delta = static_cast<int>(*n);
             }
             if (a == "--max-pixels") {
-                const auto n = parse_whole(v, 0, INT64_MAX);
-                if (!n) {
-                    return usage(err, "--max-pixels: expected a whole number from 0 to " + std::to_string(INT64_MAX) +
-                                          ", got '" + std::string(v) + "'");
-                }
-                options.image_tolerance.max_differing_pixels = *n;
+                const auto n = game::parse_whole(v, 0, INT64_MAX);
+                if (!n) return usage(err, game::whole_number_error("--max-pixels", "0", std::to_string(INT64_MAX), v));
+                options.image_tolerance.max_differing_pixels = static_cast<std::int64_t>(*n);
             }
             continue;
         }

@@ -2,6 +2,7 @@
 #include "cli.h"
 
 #include <algorithm>
+#include <charconv>
 
 namespace jostle::game {
 
@@ -16,6 +17,22 @@ bool looks_like_option(std::string_view v) {
 }
 
 }  // namespace
+
+std::optional<std::uint64_t> parse_whole(std::string_view text, std::uint64_t lo, std::uint64_t hi) {
+    std::uint64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);  // no sign accepted
+    if (ec != std::errc{} || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
+    return v;
+}
+
+std::string whole_number_error(std::string_view name, std::string_view lo, std::string_view hi, std::string_view got) {
+    std::string out = std::string(name) + ": expected a whole number from " + std::string(lo) + " to " + std::string(hi) +
+                      ", got '" + std::string(got) + "'";
+    const bool plus = got.starts_with('+');
+    const bool minus_zero = got.size() > 1 && got[0] == '-' && got.find_first_not_of('0', 1) == std::string_view::npos;
+    if (plus || minus_zero) out += " (a number here is written without a sign)";
+    return out;
+}
 
 std::string option_value(std::span<const std::string_view> args, std::size_t& i, std::string_view name,
                          std::string_view& value) {

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -16,6 +18,15 @@ namespace jostle::game {
 // output where the option allows it) are left to the option's own check.
 std::string option_value(std::span<const std::string_view> args, std::size_t& i, std::string_view name,
                          std::string_view& value);
+
+// A whole-number option's value: plain digits (no sign, no spaces) for a number from lo to hi,
+// all of `text`; nullopt otherwise.
+std::optional<std::uint64_t> parse_whole(std::string_view text, std::uint64_t lo, std::uint64_t hi);
+
+// The usage error for a whole-number option: "NAME: expected a whole number from LO to HI, got
+// 'V'", and where V has a sign a number in range would not need ('+3', '-0'), the note that
+// such numbers are written without one (as in the file formats).
+std::string whole_number_error(std::string_view name, std::string_view lo, std::string_view hi, std::string_view got);
 
 // Options that take a value may be given once: a second one is a usage error rather than the
 // last silently winning. Callers name an option by one spelling (record's -o and --out alike).

@@ -2,7 +2,6 @@
 // jostle/render/image_compare.h.
 #include "imgdiff.h"
 
-#include <charconv>
 #include <cstdint>
 #include <optional>
 #include <ostream>
@@ -19,14 +18,6 @@
 namespace jostle {
 
 namespace {
-
-// A whole number in [lo, hi], all of `text`, or nullopt.
-std::optional<std::int64_t> parse_count(std::string_view text, std::int64_t lo, std::int64_t hi) {
-    std::int64_t v = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc{} || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
-    return v;
-}
 
 int usage(std::ostream& err, const std::string& message) {
     err << "jostle imgdiff: " << message << "\nRun 'jostle imgdiff --help' for usage.\n";
@@ -78,16 +69,13 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
             if (a == "--out") {
                 diff_path = std::string(*v);
             } else if (a == "--tolerance") {
-                const auto n = parse_count(*v, 0, 255);
-                if (!n) return usage(err, "--tolerance: expected a whole number from 0 to 255, got '" + std::string(*v) + "'");
+                const auto n = game::parse_whole(*v, 0, 255);
+                if (!n) return usage(err, game::whole_number_error("--tolerance", "0", "255", *v));
                 options.max_channel_delta = static_cast<int>(*n);
             } else {
-                const auto n = parse_count(*v, 0, INT64_MAX);
-                if (!n) {
-                    return usage(err, "--max-pixels: expected a whole number from 0 to " + std::to_string(INT64_MAX) +
-                                          ", got '" + std::string(*v) + "'");
-                }
-                options.max_differing_pixels = *n;
+                const auto n = game::parse_whole(*v, 0, INT64_MAX);
+                if (!n) return usage(err, game::whole_number_error("--max-pixels", "0", std::to_string(INT64_MAX), *v));
+                options.max_differing_pixels = static_cast<std::int64_t>(*n);
             }
         } else if (a == "--help" || a == "-h") {  // anywhere an option may stand, as right after the command
             out << imgdiff_help();

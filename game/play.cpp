@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -34,19 +33,12 @@ int usage(std::ostream& err, const std::string& message) {
     return 2;
 }
 
-std::optional<std::int64_t> parse_whole(std::string_view text, std::int64_t lo, std::int64_t hi) {
-    std::int64_t v = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc{} || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
-    return v;
-}
-
 // "640x480" -> {640, 480}, sides in 1..kMaxFrameSide.
 std::optional<std::pair<int, int>> parse_size(std::string_view text) {
     const std::size_t x = text.find('x');
     if (x == std::string_view::npos) return std::nullopt;
-    const auto w = parse_whole(text.substr(0, x), 1, kMaxFrameSide);
-    const auto h = parse_whole(text.substr(x + 1), 1, kMaxFrameSide);
+    const auto w = game::parse_whole(text.substr(0, x), 1, kMaxFrameSide);
+    const auto h = game::parse_whole(text.substr(x + 1), 1, kMaxFrameSide);
     if (!w || !h) return std::nullopt;
     return std::pair<int, int>{static_cast<int>(*w), static_cast<int>(*h)};
 }
@@ -188,13 +180,13 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             if (a == "--trace") trace_path = std::string(*v);
             if (a == "--assets") assets = std::string(*v);
             if (a == "--every") {
-                const auto n = parse_whole(*v, 1, 1'000'000);
-                if (!n) return usage(err, "--every: expected a whole number from 1 to 1000000, got '" + std::string(*v) + "'");
-                every = *n;
+                const auto n = game::parse_whole(*v, 1, 1'000'000);
+                if (!n) return usage(err, game::whole_number_error("--every", "1", "1000000", *v));
+                every = static_cast<std::int64_t>(*n);
             }
             if (a == "--dump-every") {
-                const auto n = parse_whole(*v, 1, 1'000'000);
-                if (!n) return usage(err, "--dump-every: expected a whole number from 1 to 1000000, got '" + std::string(*v) + "'");
+                const auto n = game::parse_whole(*v, 1, 1'000'000);
+                if (!n) return usage(err, game::whole_number_error("--dump-every", "1", "1000000", *v));
                 options.dump_every = static_cast<int>(*n);
             }
             if (a == "--size") {

@@ -3,7 +3,6 @@
 #include "record.h"
 
 #include <algorithm>
-#include <charconv>
 #include <fstream>
 #include <ios>
 #include <istream>
@@ -26,13 +25,6 @@ namespace {
 int usage(std::ostream& err, const std::string& message) {
     err << "jostle record: " << message << "\nRun 'jostle record --help' for usage.\n";
     return 2;
-}
-
-std::optional<std::uint64_t> parse_unsigned(std::string_view text, std::uint64_t hi) {
-    std::uint64_t v = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc{} || end != text.data() + text.size() || v > hi) return std::nullopt;
-    return v;
 }
 
 // The whole script on standard input. A read that fails (stdin is a folder) says so instead of
@@ -126,20 +118,20 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         if (a == "--from") from_path = std::string(v);
         if (a == "--assets") assets = std::string(v);
         if (a == "--seed") {
-            const auto n = parse_unsigned(v, UINT64_MAX);
-            if (!n) return usage(err, "--seed: expected a whole number from 0 to 18446744073709551615, got '" + std::string(v) + "'");
+            const auto n = game::parse_whole(v, 0, UINT64_MAX);
+            if (!n) return usage(err, game::whole_number_error("--seed", "0", "18446744073709551615", v));
             desc.seed = *n;
             seed_given = true;
         }
         if (a == "--tick-rate") {
-            const auto n = parse_unsigned(v, 1000);
-            if (!n || *n < 1) return usage(err, "--tick-rate: expected a whole number from 1 to 1000, got '" + std::string(v) + "'");
+            const auto n = game::parse_whole(v, 1, 1000);
+            if (!n) return usage(err, game::whole_number_error("--tick-rate", "1", "1000", v));
             desc.tick_rate = static_cast<int>(*n);
             tick_rate_given = true;
         }
         if (a == "--at") {
-            const auto n = parse_unsigned(v, static_cast<std::uint64_t>(kMaxScenarioTicks));
-            if (!n) return usage(err, "--at: expected a tick number, got '" + std::string(v) + "'");
+            const auto n = game::parse_whole(v, 0, static_cast<std::uint64_t>(kMaxScenarioTicks));
+            if (!n) return usage(err, game::whole_number_error("--at", "0", std::to_string(kMaxScenarioTicks), v));
             at = static_cast<std::int64_t>(*n);
         }
     }

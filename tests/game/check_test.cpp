@@ -808,6 +808,8 @@ TEST_F(Check, UsageErrorsExitTwoWithTheirMessage) {
         {{s, "--jobs", "x"}, "--jobs: expected a whole number from 1 to 256, got 'x'"},
         {{s, "--jobs", "257"}, "--jobs: expected a whole number from 1 to 256, got '257'"},
         {{s, "--jobs", "-2"}, "--jobs: expected a whole number from 1 to 256, got '-2'"},
+        {{s, "--jobs", "+2"}, "--jobs: expected a whole number from 1 to 256, got '+2' (a number here is written without a sign)"},
+        {{s, "--tolerance", "-0"}, "--tolerance: expected a whole number from 0 to 255, got '-0' (a number here is written without a sign)"},
         {{s, "--tolerance", "256"}, "--tolerance: expected a whole number from 0 to 255, got '256'"},
         {{s, "--tolerance", "-1"}, "--tolerance: expected a whole number from 0 to 255, got '-1'"},
         {{s, "--max-pixels", "-1"}, "--max-pixels: expected a whole number from 0 to 9223372036854775807, got '-1'"},

@@ -114,6 +114,8 @@ TEST_F(Imgdiff, BadUsageAndBadInputExitTwo) {
                  "--tolerance: expected a whole number from 0 to 255, got '256'");
     expect_error(run({path("a.png"), path("a.png"), "--max-pixels", "-1"}),
                  "--max-pixels: expected a whole number from 0 to 9223372036854775807, got '-1'");
+    expect_error(run({path("a.png"), path("a.png"), "--tolerance", "+0"}),
+                 "--tolerance: expected a whole number from 0 to 255, got '+0' (a number here is written without a sign)");
     // Past the largest value the message states the range, not only its lower end.
     expect_error(run({path("a.png"), path("a.png"), "--max-pixels", "18446744073709551615"}),
                  "--max-pixels: expected a whole number from 0 to 9223372036854775807, got '18446744073709551615'");

@@ -141,6 +141,8 @@ TEST_F(Play, BadSizeFramesAndEvery) {
                            std::string("--every: expected a whole number from 1 to 1000000, got '") + every + "'");
     }
     expect_usage_error({s, "--dump-every", "0"}, "--dump-every: expected a whole number from 1 to 1000000, got '0'");
+    expect_usage_error({s, "--every", "+2"},
+                       "--every: expected a whole number from 1 to 1000000, got '+2' (a number here is written without a sign)");
 }
 
 TEST_F(Play, HelpExitsZero) {

@@ -290,7 +290,14 @@ TEST_F(Record, UsageErrorsExitTwoWithTheirMessage) {
     expect_rejected({"--from", from, "--at", "11", "-o", kOut, s, script}, usage_error("--at 11: " + from + " has only 10 ticks"));
     for (const char* at : {"-1", "x", "3.5", "16777217", ""}) {
         expect_rejected({"--from", from, "--at", at, "-o", kOut, s, script},
-                        *at == '\0' ? usage_error("--at needs a value") : usage_error(std::string("--at: expected a tick number, got '") + at + "'"));
+                        *at == '\0' ? usage_error("--at needs a value")
+                                    : usage_error(std::string("--at: expected a whole number from 0 to 16777216, got '") + at + "'"));
+    }
+    // A sign that a number in range would not need is named (the file formats refuse it too).
+    for (const char* at : {"+3", "-0", "-00"}) {
+        expect_rejected({"--from", from, "--at", at, "-o", kOut, s, script},
+                        usage_error(std::string("--at: expected a whole number from 0 to 16777216, got '") + at +
+                                    "' (a number here is written without a sign)"));
     }
     // The --from scenario is checked like any scenario.
     const std::string absent = path("absent.scn");
