@@ -168,30 +168,29 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             quiet = true;
         } else if (a == "--out" || a == "--frames" || a == "--every" || a == "--size" || a == "--sheet" ||
                    a == "--anim" || a == "--trace" || a == "--dump-every" || a == "--assets") {
-            std::string_view value;
-            if (std::string e = game::option_value(args, i, a, value); !e.empty()) return usage(err, e);
+            std::string_view v;
+            if (std::string e = game::option_value(args, i, a, v); !e.empty()) return usage(err, e);
             if (std::string e = once.take(a); !e.empty()) return usage(err, e);
-            const std::optional<std::string_view> v = value;
             given(a);
-            if (a == "--out") options.out_dir = std::string(*v);
-            if (a == "--frames") frames_text = std::string(*v);
-            if (a == "--sheet") options.sheet_path = std::string(*v);
-            if (a == "--anim") options.anim_path = std::string(*v);
-            if (a == "--trace") trace_path = std::string(*v);
-            if (a == "--assets") assets = std::string(*v);
+            if (a == "--out") options.out_dir = std::string(v);
+            if (a == "--frames") frames_text = std::string(v);
+            if (a == "--sheet") options.sheet_path = std::string(v);
+            if (a == "--anim") options.anim_path = std::string(v);
+            if (a == "--trace") trace_path = std::string(v);
+            if (a == "--assets") assets = std::string(v);
             if (a == "--every") {
-                const auto n = game::parse_whole(*v, 1, 1'000'000);
-                if (!n) return usage(err, game::whole_number_error("--every", "1", "1000000", *v));
+                const auto n = game::parse_whole(v, 1, 1'000'000);
+                if (!n) return usage(err, game::whole_number_error("--every", "1", "1000000", v));
                 every = static_cast<std::int64_t>(*n);
             }
             if (a == "--dump-every") {
-                const auto n = game::parse_whole(*v, 1, 1'000'000);
-                if (!n) return usage(err, game::whole_number_error("--dump-every", "1", "1000000", *v));
+                const auto n = game::parse_whole(v, 1, 1'000'000);
+                if (!n) return usage(err, game::whole_number_error("--dump-every", "1", "1000000", v));
                 options.dump_every = static_cast<int>(*n);
             }
             if (a == "--size") {
-                const auto size = parse_size(*v);
-                if (!size) return usage(err, "--size: expected WIDTHxHEIGHT with sides from 1 to 8192, got '" + std::string(*v) + "'");
+                const auto size = parse_size(v);
+                if (!size) return usage(err, "--size: expected WIDTHxHEIGHT with sides from 1 to 8192, got '" + std::string(v) + "'");
                 options.width = size->first;
                 options.height = size->second;
             }
