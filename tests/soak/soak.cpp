@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "arena.h"
+#include "cli.h"
 #include "jostle/core/rng.h"
 #include "jostle/replay/simulation.h"
 
@@ -68,38 +69,37 @@ struct Options {
     std::exit(2);
 }
 
-std::int64_t whole_number(std::string_view flag, const std::string& text, std::int64_t lo, std::int64_t hi) {
-    std::size_t used = 0;
-    long long value = 0;
-    try {
-        value = std::stoll(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != text.size() || text.empty() || value < lo || value > hi) {
-        usage_error(std::string(flag) + " expects a whole number from " + std::to_string(lo) + " to " +
-                    std::to_string(hi) + ", got '" + text + "'");
-    }
-    return value;
+// The jostle command line's rules (game/cli.h): a value that is another option, a value option
+// given twice and a number with a sign or past its range are usage errors.
+std::int64_t whole_number(std::string_view flag, std::string_view text, std::uint64_t lo, std::uint64_t hi) {
+    const auto n = jostle::game::parse_whole(text, lo, hi);
+    if (!n) usage_error(jostle::game::whole_number_error(flag, std::to_string(lo), std::to_string(hi), text));
+    return static_cast<std::int64_t>(*n);
 }
 
 Options parse(int argc, char** argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string_view flag = argv[i];
+    const std::vector<std::string_view> args(argv + 1, argv + argc);
+    jostle::game::OnceOnly once;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string_view flag = args[i];
         if (flag == "--help" || flag == "-h") {
             std::cout << kUsage;
             std::exit(0);
         }
-        if (i + 1 >= argc) usage_error("'" + std::string(flag) + "' needs a value");
-        const std::string value = argv[++i];
+        if (flag != "--ticks" && flag != "--seed" && flag != "--every" && flag != "--level" && flag != "--assets" &&
+            flag != "--hashes") {
+            usage_error("unknown option '" + std::string(flag) + "'");
+        }
+        std::string_view value;
+        if (std::string e = jostle::game::option_value(args, i, flag, value); !e.empty()) usage_error(e);
+        if (std::string e = once.take(flag); !e.empty()) usage_error(e);
         if (flag == "--ticks") o.ticks = whole_number(flag, value, 1, 100'000'000);
-        else if (flag == "--seed") o.seed = static_cast<std::uint64_t>(whole_number(flag, value, 0, INT64_MAX));
-        else if (flag == "--every") o.every = whole_number(flag, value, 1, 100'000'000);
-        else if (flag == "--level") o.level = value;
-        else if (flag == "--assets") o.assets = value;
-        else if (flag == "--hashes") o.hashes = value;
-        else usage_error("unknown option '" + std::string(flag) + "'");
+        if (flag == "--seed") o.seed = static_cast<std::uint64_t>(whole_number(flag, value, 0, INT64_MAX));
+        if (flag == "--every") o.every = whole_number(flag, value, 1, 100'000'000);
+        if (flag == "--level") o.level = std::string(value);
+        if (flag == "--assets") o.assets = std::string(value);
+        if (flag == "--hashes") o.hashes = std::string(value);
     }
     if (o.assets.empty()) o.assets = jostle::game::default_assets_dir();
     return o;
