@@ -16,6 +16,7 @@
 #include <set>
 #include <ostream>
 #include <stdexcept>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -712,9 +713,10 @@ int run_query(std::istream& in, std::ostream& out) {
                 if (line.size() <= kMaxQueryLineBytes) line.push_back(static_cast<char>(c));
             }
         } catch (const std::ios_base::failure& e) {
-            // A file stream's read failed (stdin is a folder: "Is a directory"); the lines
-            // answered so far stand.
-            throw InputError("standard input: cannot read: " + e.code().message());
+            // A file stream's read failed (stdin is a folder); the lines answered so far stand.
+            // Named as record names its script on standard input.
+            if (e.code() == std::errc::is_a_directory) throw InputError("<stdin>: is a folder, expected query lines");
+            throw InputError("<stdin>: cannot read: " + e.code().message());
         }
         if (!read_any) break;
         bool ok = true;

@@ -9,6 +9,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <system_error>
 
 #include "arena.h"
 #include "cli.h"
@@ -40,6 +41,8 @@ std::string read_all(std::istream& in) {
         }
     } catch (const std::ios_base::failure& e) {
         throw_if_interrupted();  // Ctrl-C while the script was typed
+        // Said as a script file's would be (core/text.cpp), not as strerror's "Is a directory".
+        if (e.code() == std::errc::is_a_directory) throw InputError("<stdin>: is a folder, expected the script");
         throw InputError("<stdin>: cannot read the script: " + e.code().message());
     }
     return text;

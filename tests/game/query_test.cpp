@@ -778,14 +778,14 @@ TEST(QueryStream, AnUnreadableStdinSaysSoAfterTheLinesBeforeIt) {
     std::ostringstream err;
     EXPECT_EQ(query_command({}, in, out, err), 2);
     EXPECT_EQ(out.str(), "{\"kind\":\"parallel\",\"point\":null}\n");
-    EXPECT_EQ(err.str(), "jostle query: standard input: cannot read: Input/output error\n");
+    EXPECT_EQ(err.str(), "jostle query: <stdin>: cannot read: Input/output error\n");
 
     std::ifstream folder(kData);  // opening a folder works; reading it fails
     std::ostringstream out2;
     std::ostringstream err2;
     EXPECT_EQ(query_command({}, folder, out2, err2), 2);
     EXPECT_EQ(out2.str(), "");
-    EXPECT_EQ(err2.str(), "jostle query: standard input: cannot read: Is a directory\n");
+    EXPECT_EQ(err2.str(), "jostle query: <stdin>: is a folder, expected query lines\n");
 }
 
 TEST(QueryStream, ExtraArgumentsAreAUsageError) {

@@ -99,7 +99,7 @@ TEST(ReadPng, InterlacedRgb) {
 
 TEST(ReadPng, ErrorsNameTheFile) {
     EXPECT_EQ(read_error(kData + "/missing.png"), kData + "/missing.png: cannot open: No such file or directory");
-    EXPECT_EQ(read_error(kData), kData + ": cannot read: Is a directory");
+    EXPECT_EQ(read_error(kData), kData + ": is a folder, expected a PNG file");
     EXPECT_EQ(read_error(kData + "/not_png.png"), kData + "/not_png.png: not a PNG file (no PNG signature)");
     EXPECT_EQ(read_error(kData + "/corrupt_crc.png"), kData + "/corrupt_crc.png: corrupt PNG: IDAT: CRC error");
     EXPECT_EQ(read_error(kData + "/truncated.png"),

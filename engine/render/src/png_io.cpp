@@ -223,7 +223,8 @@ Image read_png(const std::string& path) {
     const std::size_t got = std::fread(signature, 1, sizeof signature, r.file);
     if (got != sizeof signature && std::ferror(r.file)) {
         const int e = errno;
-        fail(path, std::string("cannot read: ") + std::strerror(e));
+        // Said as the text files say it (core/text.cpp), not as strerror's "Is a directory".
+        fail(path, e == EISDIR ? std::string("is a folder, expected a PNG file") : std::string("cannot read: ") + std::strerror(e));
     }
     if (got != sizeof signature || png_sig_cmp(signature, 0, sizeof signature) != 0) {
         fail(path, "not a PNG file (no PNG signature)");
