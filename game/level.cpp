@@ -86,10 +86,13 @@ private:
 
 // The game's own names for what it spawns, bullet_N and ball_N (arena.cpp): "bullet_" or
 // "ball_" and digits. A thing named so would share its name with a bullet or a ball in the
-// dumps and in expectations. Returns what the game names so, or nullptr.
+// dumps and in expectations; so would player (the ship) and game (the dumps' game state).
+// Returns why the name is reserved, or nullptr.
 const char* reserved_for(std::string_view name) {
-    for (const auto& [prefix, what] : {std::pair<std::string_view, const char*>{"bullet_", "its bullets bullet_N"},
-                                       std::pair<std::string_view, const char*>{"ball_", "its cannon balls ball_N"}}) {
+    if (name == "player") return "the game names its ship player";
+    if (name == "game") return "a trace's dumps name the game's own state game";
+    for (const auto& [prefix, what] : {std::pair<std::string_view, const char*>{"bullet_", "the game names its bullets bullet_N"},
+                                       std::pair<std::string_view, const char*>{"ball_", "the game names its cannon balls ball_N"}}) {
         if (name.size() > prefix.size() && name.starts_with(prefix) &&
             name.find_first_not_of("0123456789", prefix.size()) == std::string_view::npos) {
             return what;
@@ -178,12 +181,10 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
         auto take_name = [&]() {
             if (r.size() < 2) r.expect_words(2, 2, "KIND NAME ...");
             thing.name = std::string(r.word(1).text);
-            if (thing.name == "player" || thing.name == "game" || !names.insert(thing.name).second) {
-                r.fail(r.word(1).column, "the name '" + thing.name + "' is already taken");
-            }
             if (const char* what = reserved_for(thing.name)) {
-                r.fail(r.word(1).column, "the name '" + thing.name + "' is reserved: the game names " + what);
+                r.fail(r.word(1).column, "the name '" + thing.name + "' is reserved: " + what);
             }
+            if (!names.insert(thing.name).second) r.fail(r.word(1).column, "the name '" + thing.name + "' is already taken");
         };
         if (head == "wall") {
             r.expect_words(6, 6, "wall NAME X0 Y0 X1 Y1");

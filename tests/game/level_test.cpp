@@ -222,8 +222,8 @@ TEST(LevelErrors, UnknownLineKind) {
 TEST(LevelErrors, DuplicateAndReservedNames) {
     EXPECT_EQ(error_of(kHead + "wall a 0 0 10 10\npickup a 5 5 2\n"), "l.level:5:8: the name 'a' is already taken");
     EXPECT_EQ(error_of(kHead + "rock r circle 1 1 1\nrock r poly 0 0 0 0 1 0 0 1\n"), "l.level:5:6: the name 'r' is already taken");
-    EXPECT_EQ(error_of_line("crate player 1 2 3 4 0"), "l.level:4:7: the name 'player' is already taken");
-    EXPECT_EQ(error_of_line("cannon game 1 2 0 10 100"), "l.level:4:8: the name 'game' is already taken");
+    EXPECT_EQ(error_of_line("crate player 1 2 3 4 0"), "l.level:4:7: the name 'player' is reserved: the game names its ship player");
+    EXPECT_EQ(error_of_line("cannon game 1 2 0 10 100"), "l.level:4:8: the name 'game' is reserved: a trace's dumps name the game's own state game");
     // The game's names for the bullets and balls it fires (bullet_N, ball_N): a thing named so
     // would be dumped beside the bullet of that name, and `expect bullet_1 gone` would find it.
     EXPECT_EQ(error_of_line("rock bullet_1 circle 200 240 10"),
