@@ -1,6 +1,7 @@
 // level.cpp: parsing the arena's level files (format in level.h).
 #include "level.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -214,7 +215,11 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             const Word& second_last = r.word(r.size() - 2);
             if (r.size() >= 5 && second_last.text == "mass") {
                 thing.mass = r.positive(r.size() - 1, "mass", 1000.0f, "1000");
+                const int mass_column = second_last.column;
                 words.resize(words.size() - 2);  // the shape's words are checked as if it were not there
+                if (std::any_of(words.begin(), words.end(), [](const Word& w) { return w.text == "mass"; })) {
+                    r.fail(mass_column, "'mass' given twice (a rock's mass is given once, at the end)");
+                }
             } else if (shape_words(r.size() - 2) && std::isalpha(static_cast<unsigned char>(second_last.text[0])) != 0 &&
                        !parse_float(second_last.text) && parse_float(r.word(r.size() - 1).text)) {
                 // "mas 3", "weight 3" where a mass may stand: a misspelt mass, not a coordinate.

@@ -168,6 +168,10 @@ TEST(LevelErrors, MassPropsAndBlobs) {
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass heavy"), "l.level:4:26: expected a positive mass, got 'heavy'");
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass"), "l.level:4:25: expected a mass after 'mass'");
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 mass"), "l.level:4:33: expected a mass after 'mass'");
+    EXPECT_EQ(error_of_line("rock r circle 1 2 3 mass 2 mass 3"),
+              "l.level:4:28: 'mass' given twice (a rock's mass is given once, at the end)");
+    EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 mass 2 mass 3"),
+              "l.level:4:36: 'mass' given twice (a rock's mass is given once, at the end)");
     // A misspelt 'mass' is named as such, after a circle and after a polygon's vertices (where
     // it is not "expected a coordinate").
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mas 4"), "l.level:4:21: expected 'mass M' or a number, got 'mas'");
