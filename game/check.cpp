@@ -105,17 +105,17 @@ int check_command(std::span<const std::string_view> args, std::ostream& out, std
             }
             if (a == "--jobs") {
                 const auto n = game::parse_whole(v, 1, 256);
-                if (!n) return usage(err, game::whole_number_error("--jobs", "1", "256", v));
+                if (!n) return usage(err, game::whole_number_error("--jobs", 1, 256, v));
                 jobs = static_cast<int>(*n);
             }
             if (a == "--tolerance") {
                 const auto n = game::parse_whole(v, 0, 255);
-                if (!n) return usage(err, game::whole_number_error("--tolerance", "0", "255", v));
+                if (!n) return usage(err, game::whole_number_error("--tolerance", 0, 255, v));
                 options.image_tolerance.max_channel_delta = static_cast<int>(*n);
             }
             if (a == "--max-pixels") {
                 const auto n = game::parse_whole(v, 0, INT64_MAX);
-                if (!n) return usage(err, game::whole_number_error("--max-pixels", "0", std::to_string(INT64_MAX), v));
+                if (!n) return usage(err, game::whole_number_error("--max-pixels", 0, INT64_MAX, v));
                 options.image_tolerance.max_differing_pixels = static_cast<std::int64_t>(*n);
             }
             continue;

@@ -25,12 +25,12 @@ std::optional<std::uint64_t> parse_whole(std::string_view text, std::uint64_t lo
     return v;
 }
 
-std::string whole_number_error(std::string_view name, std::string_view lo, std::string_view hi, std::string_view got) {
-    std::string out = std::string(name) + ": expected a whole number from " + std::string(lo) + " to " + std::string(hi) +
+std::string whole_number_error(std::string_view name, std::uint64_t lo, std::uint64_t hi, std::string_view got) {
+    std::string out = std::string(name) + ": expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
                       ", got '" + std::string(got) + "'";
-    const bool plus = got.starts_with('+');
-    const bool minus_zero = got.size() > 1 && got[0] == '-' && got.find_first_not_of('0', 1) == std::string_view::npos;
-    if (plus || minus_zero) out += " (a number here is written without a sign)";
+    // '+3' or '-0' where 3 or 0 would do; not '+x', '+999' past the range, or '-5'.
+    const bool sign = got.starts_with('+') || (got.starts_with('-') && got.find_first_not_of('0', 1) == std::string_view::npos);
+    if (sign && parse_whole(got.substr(1), lo, hi)) out += " (a number here is written without a sign)";
     return out;
 }
 

@@ -26,7 +26,7 @@ std::optional<std::uint64_t> parse_whole(std::string_view text, std::uint64_t lo
 // The usage error for a whole-number option: "NAME: expected a whole number from LO to HI, got
 // 'V'", and where V has a sign a number in range would not need ('+3', '-0'), the note that
 // such numbers are written without one (as in the file formats).
-std::string whole_number_error(std::string_view name, std::string_view lo, std::string_view hi, std::string_view got);
+std::string whole_number_error(std::string_view name, std::uint64_t lo, std::uint64_t hi, std::string_view got);
 
 // Options that take a value may be given once: a second one is a usage error rather than the
 // last silently winning. Callers name an option by one spelling (record's -o and --out alike).

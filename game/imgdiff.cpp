@@ -69,11 +69,11 @@ int imgdiff_command(std::span<const std::string_view> args, std::ostream& out, s
                 diff_path = std::string(v);
             } else if (a == "--tolerance") {
                 const auto n = game::parse_whole(v, 0, 255);
-                if (!n) return usage(err, game::whole_number_error("--tolerance", "0", "255", v));
+                if (!n) return usage(err, game::whole_number_error("--tolerance", 0, 255, v));
                 options.max_channel_delta = static_cast<int>(*n);
             } else {
                 const auto n = game::parse_whole(v, 0, INT64_MAX);
-                if (!n) return usage(err, game::whole_number_error("--max-pixels", "0", std::to_string(INT64_MAX), v));
+                if (!n) return usage(err, game::whole_number_error("--max-pixels", 0, INT64_MAX, v));
                 options.max_differing_pixels = static_cast<std::int64_t>(*n);
             }
         } else if (a == "--help" || a == "-h") {  // anywhere an option may stand, as right after the command

@@ -217,7 +217,8 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
                 thing.mass = r.positive(r.size() - 1, "mass", 1000.0f, "1000");
                 const int mass_column = second_last.column;
                 words.resize(words.size() - 2);  // the shape's words are checked as if it were not there
-                if (std::any_of(words.begin(), words.end(), [](const Word& w) { return w.text == "mass"; })) {
+                // (After 'rock NAME SHAPE': a rock may be named mass.)
+                if (std::any_of(words.begin() + 3, words.end(), [](const Word& w) { return w.text == "mass"; })) {
                     r.fail(mass_column, "'mass' given twice (a rock's mass is given once, at the end)");
                 }
             } else if (shape_words(r.size() - 2) && std::isalpha(static_cast<unsigned char>(second_last.text[0])) != 0 &&
@@ -275,6 +276,7 @@ Level parse_level(std::string_view text, const std::string& source, const std::s
             r.expect_words(7, 7, "blob NAME X0 Y0 X1 Y1 SPEED");
             take_name();
             thing.kind = LevelThing::Kind::blob;
+            thing.sprite_column = r.word(0).column;  // the sprite is blob's own: the line names it
             thing.position = {r.coordinate(2), r.coordinate(3)};
             thing.size = {r.coordinate(4), r.coordinate(5)};
             thing.speed = r.positive(6, "speed");

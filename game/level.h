@@ -55,7 +55,7 @@ struct LevelThing {
     float mass = 1.0f;      // rocks
     std::string sprite;     // props: the picture (and so the mask)
     int line = 0;
-    int sprite_column = 1;  // where the sprite was named (the arena checks it exists); a blob's: its line's start
+    int sprite_column = 1;  // where the sprite was named (the arena checks it exists); a blob's: its first word
 };
 
 struct Level {

@@ -180,12 +180,12 @@ int play_command(std::span<const std::string_view> args, std::ostream& out, std:
             if (a == "--assets") assets = std::string(v);
             if (a == "--every") {
                 const auto n = game::parse_whole(v, 1, 1'000'000);
-                if (!n) return usage(err, game::whole_number_error("--every", "1", "1000000", v));
+                if (!n) return usage(err, game::whole_number_error("--every", 1, 1000000, v));
                 every = static_cast<std::int64_t>(*n);
             }
             if (a == "--dump-every") {
                 const auto n = game::parse_whole(v, 1, 1'000'000);
-                if (!n) return usage(err, game::whole_number_error("--dump-every", "1", "1000000", v));
+                if (!n) return usage(err, game::whole_number_error("--dump-every", 1, 1000000, v));
                 options.dump_every = static_cast<int>(*n);
             }
             if (a == "--size") {

@@ -122,19 +122,19 @@ int record_command(std::span<const std::string_view> args, std::istream& in, std
         if (a == "--assets") assets = std::string(v);
         if (a == "--seed") {
             const auto n = game::parse_whole(v, 0, UINT64_MAX);
-            if (!n) return usage(err, game::whole_number_error("--seed", "0", "18446744073709551615", v));
+            if (!n) return usage(err, game::whole_number_error("--seed", 0, UINT64_MAX, v));
             desc.seed = *n;
             seed_given = true;
         }
         if (a == "--tick-rate") {
             const auto n = game::parse_whole(v, 1, 1000);
-            if (!n) return usage(err, game::whole_number_error("--tick-rate", "1", "1000", v));
+            if (!n) return usage(err, game::whole_number_error("--tick-rate", 1, 1000, v));
             desc.tick_rate = static_cast<int>(*n);
             tick_rate_given = true;
         }
         if (a == "--at") {
             const auto n = game::parse_whole(v, 0, static_cast<std::uint64_t>(kMaxScenarioTicks));
-            if (!n) return usage(err, game::whole_number_error("--at", "0", std::to_string(kMaxScenarioTicks), v));
+            if (!n) return usage(err, game::whole_number_error("--at", 0, static_cast<std::uint64_t>(kMaxScenarioTicks), v));
             at = static_cast<std::int64_t>(*n);
         }
     }

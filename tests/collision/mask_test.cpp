@@ -948,15 +948,19 @@ TEST(MaskShapes, ThinShapesAcrossDenseMasksMatchTheExhaustiveSearch) {
     Rng rng(7177);
     int hits = 0;
     int slivers = 0;
-    for (int n = 0; n < 300; ++n) {
-        const Mask m = random_mask(rng, uniform_int(rng, 3, 12), uniform_int(rng, 3, 12), 75);
+    for (int n = 0; n < 330; ++n) {
+        // The last 30 wide and short, so that the columns' words past the first are read (and
+        // the exhaustive search stays quick: the push down or up is short).
+        const bool wide = n >= 300;
+        const Mask m = wide ? random_mask(rng, uniform_int(rng, 60, 140), uniform_int(rng, 2, 5), 85)
+                            : random_mask(rng, uniform_int(rng, 3, 12), uniform_int(rng, 3, 12), 75);
         const PlacedMask p{&m, uniform_int(rng, -2, 2), uniform_int(rng, -2, 2)};
         // From one side of the mask to the other, across x or across y.
         const float w = static_cast<float>(m.width()), h = static_cast<float>(m.height());
         const float x = static_cast<float>(p.x), y = static_cast<float>(p.y);
         Vec2 a{grid(rng, x - 2, x + 1), grid(rng, y - 2, y + h + 2)};
         Vec2 b{grid(rng, x + w - 1, x + w + 2), grid(rng, y - 2, y + h + 2)};
-        if (n % 4 >= 2) {
+        if (n % 4 >= 2 || wide) {
             a = {grid(rng, x - 2, x + w + 2), grid(rng, y - 2, y + 1)};
             b = {grid(rng, x - 2, x + w + 2), grid(rng, y + h - 1, y + h + 2)};
         }
@@ -993,9 +997,11 @@ TEST(MaskShapes, ThinShapesAcrossDenseMasksMatchTheExhaustiveSearch) {
 // A thin mask under a solid one, both ways round: the jump reads either mask's column.
 TEST(MaskMtd, LinesAcrossSolidMasksEqualReference) {
     Rng rng(9090);
-    for (int n = 0; n < 300; ++n) {
-        const Mask solid = random_mask(rng, uniform_int(rng, 4, 14), uniform_int(rng, 4, 14), 85);
-        Mask line(uniform_int(rng, 4, 14), uniform_int(rng, 4, 14));
+    for (int n = 0; n < 330; ++n) {
+        const bool wide = n >= 300;  // words past the first: wide and short, as above
+        const Mask solid = wide ? random_mask(rng, uniform_int(rng, 60, 140), uniform_int(rng, 2, 6), 85)
+                                : random_mask(rng, uniform_int(rng, 4, 14), uniform_int(rng, 4, 14), 85);
+        Mask line(wide ? uniform_int(rng, 60, 140) : uniform_int(rng, 4, 14), wide ? uniform_int(rng, 2, 6) : uniform_int(rng, 4, 14));
         const int steps = std::max(line.width(), line.height());
         const int x0 = uniform_int(rng, 0, line.width() - 1), y0 = uniform_int(rng, 0, line.height() - 1);
         const int x1 = uniform_int(rng, 0, line.width() - 1), y1 = uniform_int(rng, 0, line.height() - 1);

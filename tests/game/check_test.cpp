@@ -809,6 +809,8 @@ TEST_F(Check, UsageErrorsExitTwoWithTheirMessage) {
         {{s, "--jobs", "257"}, "--jobs: expected a whole number from 1 to 256, got '257'"},
         {{s, "--jobs", "-2"}, "--jobs: expected a whole number from 1 to 256, got '-2'"},
         {{s, "--jobs", "+2"}, "--jobs: expected a whole number from 1 to 256, got '+2' (a number here is written without a sign)"},
+        {{s, "--jobs", "+999"}, "--jobs: expected a whole number from 1 to 256, got '+999'"},  // no sign would help
+        {{s, "--jobs", "-0"}, "--jobs: expected a whole number from 1 to 256, got '-0'"},
         {{s, "--tolerance", "-0"}, "--tolerance: expected a whole number from 0 to 255, got '-0' (a number here is written without a sign)"},
         {{s, "--tolerance", "256"}, "--tolerance: expected a whole number from 0 to 255, got '256'"},
         {{s, "--tolerance", "-1"}, "--tolerance: expected a whole number from 0 to 255, got '-1'"},

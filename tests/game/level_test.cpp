@@ -172,6 +172,7 @@ TEST(LevelErrors, MassPropsAndBlobs) {
               "l.level:4:28: 'mass' given twice (a rock's mass is given once, at the end)");
     EXPECT_EQ(error_of_line("rock r poly 1 2 0 0 1 0 0 1 mass 2 mass 3"),
               "l.level:4:36: 'mass' given twice (a rock's mass is given once, at the end)");
+    EXPECT_EQ(parse_level(kHead + "rock mass circle 1 2 3 mass 4\n", "l.level", "l").things.at(0).mass, 4.0f);  // a name
     // A misspelt 'mass' is named as such, after a circle and after a polygon's vertices (where
     // it is not "expected a coordinate").
     EXPECT_EQ(error_of_line("rock r circle 1 2 3 mas 4"), "l.level:4:21: expected 'mass M' or a number, got 'mas'");

@@ -73,7 +73,7 @@ struct Options {
 // given twice and a number with a sign or past its range are usage errors.
 std::int64_t whole_number(std::string_view flag, std::string_view text, std::uint64_t lo, std::uint64_t hi) {
     const auto n = jostle::game::parse_whole(text, lo, hi);
-    if (!n) usage_error(jostle::game::whole_number_error(flag, std::to_string(lo), std::to_string(hi), text));
+    if (!n) usage_error(jostle::game::whole_number_error(flag, lo, hi, text));
     return static_cast<std::int64_t>(*n);
 }
 

@@ -133,11 +133,13 @@
 //   corner of interior angle theta, a cast or sweep is placed to within the coordinates'
 //   rounding / sin theta: at a sliver's tip of 1e-5 rad, with coordinates near 30, about a
 //   pixel (make_polygon rejects only turns within 1e-6 rad of straight). A sweep's "only
-//   grazes" is decided on F, the path's distance from a circle's centre or a corner, taken
-//   from exact products (F = cross(v, offset) / |v|), so a path that grazes exactly in float
-//   (integer input: a circle of radius 1 from (-2, 0) by (6, 8) past one of radius 1 at
-//   (5, 6)) is a miss; a path within rounding of a graze has G = sqrt(R^2 - F^2) of about
-//   sqrt(eps) of the radii and may be a hit at a slant of a few 1e-4. A circle sunk into a
+//   grazes" is decided by the contact normal's slant to the motion, which comes from F, the
+//   path's distance from a circle's centre or a corner, taken from exact products
+//   (F = cross(v, offset) / |v|): a path that grazes exactly (integer input with |v|^2 below
+//   2^24: a circle of radius 1 from (-2, 0) by (6, 8) past one of radius 1 at (5, 6)) has
+//   F = R and is a miss; a path within rounding of a graze has G = sqrt(R^2 - F^2) of about
+//   sqrt(eps) of the radii and may be a hit at a slant of a few 1e-4. (A ray cast against a
+//   circle counts touching: a grazing cast is a hit with t at the touch.) A circle sunk into a
 //   mask (by more than rounding) meets the side of the next pixel when it rolls across a seam
 //   between pixels: the mask's pixels are swept one by one. A mask's MTD takes
 //   time that grows with the push it finds. Against a convex shape a push longer than 16 px
@@ -148,10 +150,11 @@
 //   px deep at a circle's centre: 11 ms; a 20 x 20 one at the centre of a circle of radius
 //   1e5 px: 7 ms). Nor against a segment, or a polygon thinner than a pixel, whose pixels are
 //   no solid region: there (and between masks) the search jumps along the runs of set pixels
-//   in the masks' columns, so a large solid mask costs about the square of its side (a full
-//   mask crossed corner to corner by a segment: 256 px 7 ms, 1,024 px 0.11 s, 4,096 px 1.8 s;
-//   by a one-pixel diagonal line mask: 2.6 ms, 0.1 s, 5 s; on a 2-core AMD EPYC VM). The
-//   world tests a mask contact again at each position pass.
+//   in the masks' columns, so a large solid mask crossed by a segment costs about the square
+//   of its side (corner to corner: 256 px 7 ms, 1,024 px 0.11 s, 4,096 px 1.8 s, on a 2-core
+//   AMD EPYC VM); crossed by a one-pixel line mask, whose runs are one pixel where it enters,
+//   still nearly the cube (2.6 ms, 0.1 s, 5 s). The world tests a mask contact again at each
+//   position pass.
 // ==================================================================================
 #pragma once
 
