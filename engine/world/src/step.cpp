@@ -776,7 +776,10 @@ public:
             keep_clock();
             float deepest = 0.0f;
             for (std::size_t r = 0; r < contacts_.size(); ++r) {
-                const float depth = visit(contacts_[shock ? ground_up_[r] : r], shock);  // >= 0
+                PassContact& c = contacts_[shock ? ground_up_[r] : r];
+                // Most visits in a settling crowd find a still contact: tested here, not in a call.
+                if (still(c)) continue;
+                const float depth = visit(c, shock);  // >= 0
                 deepest = depth > deepest ? depth : deepest;
             }
             settled_all = deepest <= settled_ && join_new(false) == 0;
@@ -884,15 +887,18 @@ private:
         return joined;
     }
 
+    // Settled when last visited, and neither body moved since: a visit would find it settled.
+    bool still(const PassContact& c) const { return c.quiet && moves_[c.a].stamp < c.seen && moves_[c.b].stamp < c.seen; }
+
     // One visit: the contact's overlap now, and if deeper than settled, the push along its
     // normal, split by the shares. Returns the overlap (0 when not pushed).
     float visit(PassContact& c, bool shock) {
         const float wa = shock ? c.shock_a : c.share_a;
         const float wb = shock ? c.shock_b : c.share_b;
         if (!(wa + wb > 0.0f)) return 0.0f;
+        if (still(c)) return 0.0f;
         detail::Moving& ma = moves_[c.a];
         detail::Moving& mb = moves_[c.b];
-        if (c.quiet && ma.stamp < c.seen && mb.stamp < c.seen) return 0.0f;  // settled, and still
         c.seen = ++clock_;
         float depth = 0.0f;
         Vec2 normal = c.normal;
