@@ -33,6 +33,10 @@
 //                            32 px round mask about <depth> px inside a large shape, with the
 //                            MTD search's shortcuts off (the column scan alone) vs on (jostle):
 //                            no target, it shows what the shortcuts do to a deeply buried mask.
+//   BM_MaskMtdThin/<segment|line>/<side>/plain_scan   collide(mask, thin shape) for a full
+//                            side x side mask crossed by four segments (corner to corner, the
+//                            other diagonal, two slants) or the same lines as one-pixel masks,
+//                            shortcuts off (anchor) vs on: no target, it shows the column jumps.
 //
 // FAIR INPUTS
 //   Each side gets the same seeded pairs in its own native form, built once per benchmark
@@ -1211,6 +1215,59 @@ void bm_mask_mtd_deep(benchmark::State& state, DeepShape kind, int depth, bool s
 }
 
 // ---------------------------------------------------------------------------------------
+// A full mask crossed by a thin shape: the MTD search with and without its column jumps
+// ---------------------------------------------------------------------------------------
+
+struct ThinPool {
+    Mask solid;
+    std::vector<Mask> lines;  // the segments as one-pixel masks, the solid's size
+    std::vector<Shape> shapes;  // the segments, or the line masks placed at the solid's corner
+};
+
+ThinPool make_thin_pool(bool segments, int side) {
+    ThinPool p{Mask(side, side), {}, {}};
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) p.solid.set(x, y, true);
+    const float n = static_cast<float>(side);
+    const std::array<Segment, 4> cuts{Segment{{0, 0}, {n, n}}, Segment{{0, n}, {n, 0}}, Segment{{0, 0.3f * n}, {n, 0.7f * n}},
+                                      Segment{{0.2f * n, n}, {0.6f * n, 0}}};
+    p.lines.reserve(cuts.size());  // shapes point into it
+    for (const Segment& s : cuts) {
+        if (segments) {
+            p.shapes.push_back(s);
+            continue;
+        }
+        Mask& line = p.lines.emplace_back(side, side);
+        for (int k = 0; k <= 4 * side; ++k) {
+            const Vec2 q = s.a + (static_cast<float>(k) / (4.0f * n)) * (s.b - s.a);
+            line.set(std::min(side - 1, static_cast<int>(q.x)), std::min(side - 1, static_cast<int>(q.y)), true);
+        }
+        p.shapes.push_back(PlacedMask{&line, 0, 0});
+    }
+    return p;
+}
+
+void bm_mask_mtd_thin(benchmark::State& state, bool segments, int side, bool shortcuts) {
+    const ThinPool p = make_thin_pool(segments, side);
+    const Shape mask = PlacedMask{&p.solid, 0, 0};
+    std::vector<Manifold> out(p.shapes.size());
+    detail::use_mask_search_shortcuts(shortcuts);
+    time_pool(state, out, 1, [&](std::size_t i, Manifold& m) { m = collide(mask, p.shapes[i]); });
+    // The other side's answers, bit for bit.
+    detail::use_mask_search_shortcuts(!shortcuts);
+    Checker c;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const Manifold other = collide(mask, p.shapes[i]);
+        if (!out[i].hit || other.hit != out[i].hit || std::bit_cast<std::uint32_t>(other.depth) != std::bit_cast<std::uint32_t>(out[i].depth) ||
+            std::bit_cast<std::uint64_t>(other.normal) != std::bit_cast<std::uint64_t>(out[i].normal))
+            c.fail(i, fmt("depth %.9g normal (%.9g, %.9g) against %.9g (%.9g, %.9g)", out[i].depth, out[i].normal.x,
+                          out[i].normal.y, other.depth, other.normal.x, other.normal.y));
+    }
+    detail::use_mask_search_shortcuts(true);
+    c.report(state, false);
+}
+
+// ---------------------------------------------------------------------------------------
 // Registration
 // ---------------------------------------------------------------------------------------
 
@@ -1295,6 +1352,13 @@ void register_all(Inputs& inputs) {
             const DeepShape kind = d.kind;
             add(base + "plain_scan", true, [=](benchmark::State& s) { bm_mask_mtd_deep(s, kind, depth, false); });
             add(base + "jostle", false, [=](benchmark::State& s) { bm_mask_mtd_deep(s, kind, depth, true); });
+        }
+    }
+    for (const bool segments : {true, false}) {
+        for (const int side : {64, 128, 256}) {
+            const std::string base = std::string("BM_MaskMtdThin/") + (segments ? "segment/" : "line/") + std::to_string(side) + "/";
+            add(base + "plain_scan", true, [=](benchmark::State& s) { bm_mask_mtd_thin(s, segments, side, false); });
+            add(base + "jostle", false, [=](benchmark::State& s) { bm_mask_mtd_thin(s, segments, side, true); });
         }
     }
 }

@@ -1015,6 +1015,11 @@ TEST(MaskMtd, LinesAcrossSolidMasksEqualReference) {
             ASSERT_EQ(fast.hit, slow.hit) << "case " << n;
             ASSERT_EQ(fast.depth, slow.depth) << "case " << n;
             ASSERT_EQ(fast.normal, slow.normal) << "case " << n;
+            detail::use_mask_search_shortcuts(false);  // the plain scan: B's runs only
+            const Manifold plain = collide(pa, pb);
+            detail::use_mask_search_shortcuts(true);
+            ASSERT_EQ(plain.depth, fast.depth) << "case " << n;
+            ASSERT_EQ(plain.normal, fast.normal) << "case " << n;
         }
     }
 }

@@ -1121,6 +1121,11 @@ int count_with(const PlacedMask& a, const PlacedMask& b, MaskKernel k) {
 // The integer MTD search, shared by every mask pair
 // ---------------------------------------------------------------------------------------
 
+// Whether the search takes its shortcuts: a convex region's seeds and skipped columns, and
+// the jumps along a mask's own columns (detail::use_mask_search_shortcuts: tests and the
+// benchmarks compare the answers with the plain scan's).
+std::atomic<bool> search_shortcuts{true};
+
 // A candidate translation T of A, ranked by the mask MTD rule: shorter first; then the larger
 // dot(T, centre A - centre B), which pushes A away from B's centre; then a fixed order: more
 // horizontal first (smaller |dy|), then smaller dx, then smaller dy. So a pair with equal
@@ -1284,8 +1289,9 @@ struct MaskPairProblem {
         // jump (a thin B under a solid A needs the second).
         const i64 wx = std::max(ax, b.x) + at.col;
         const i64 wy = std::max(ay, b.y) + at.row;
-        jump = std::max(column_run(*b.m, static_cast<int>(wx - b.x), static_cast<int>(wy - b.y), dir),
-                        column_run(*a.m, static_cast<int>(wx - ax), static_cast<int>(wy - ay), -dir));
+        jump = column_run(*b.m, static_cast<int>(wx - b.x), static_cast<int>(wy - b.y), dir);
+        if (search_shortcuts.load(std::memory_order_relaxed))
+            jump = std::max(jump, column_run(*a.m, static_cast<int>(wx - ax), static_cast<int>(wy - ay), -dir));
         return true;
     }
 };
@@ -1715,8 +1721,6 @@ constexpr double kMaxSearchedPush = 1 << 20;
 // Pushes up to this length are searched column by column alone; past it, a convex region's
 // search also takes seeds and skips columns (search_mtd), which costs a few tests to set up.
 constexpr double kProbedPush = 16;
-// Whether it does (detail::use_mask_search_shortcuts: tests compare it with the plain scan).
-std::atomic<bool> search_shortcuts{true};
 
 // Mask vs a fixed region: the mask moves.
 template <class R>
@@ -1754,7 +1758,8 @@ struct RegionProblem {
         // holds no pixel inside, cross a solid mask in a few tests a column.
         // (A solid region's chord usually gives more, and a run is at most the rows behind.)
         if constexpr (R::kSolid) jump = solid_jump(dx, dy, dir, wj);
-        if (jump < (dir > 0 ? wj - box.y0 : box.y1 - wj) + 1) jump = std::max(jump, column_run(*m, wi, wj, -dir));
+        if (jump < (dir > 0 ? wj - box.y0 : box.y1 - wj) + 1 && search_shortcuts.load(std::memory_order_relaxed))
+            jump = std::max(jump, column_run(*m, wi, wj, -dir));
         return true;
     }
 

@@ -559,8 +559,9 @@ int count_overlap(const PlacedMask& a, const PlacedMask& b, MaskKernel k);
 // where the CPU has AVX2); returns whether it is now on. Not thread-safe: tests only.
 bool use_avx2_paths(bool on);
 // The MTD of a mask against a convex shape, when the push is longer than 16 px, starts from
-// the faces' own exits and skips runs of columns that cannot hold the answer (same answers).
-// For tests: switch that off (the plain column scan) and on again. Not thread-safe: tests only.
+// the faces' own exits and skips runs of columns that cannot hold the answer; against any
+// shape it jumps along the moving mask's own columns of set pixels (same answers). For tests
+// and benchmarks: switch that off (the plain column scan) and on again. Not thread-safe.
 bool use_mask_search_shortcuts(bool on);
 }  // namespace detail
 
