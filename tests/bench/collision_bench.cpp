@@ -1194,17 +1194,16 @@ DeepPool make_deep_pool(DeepShape kind, int depth) {
     return p;
 }
 
-void bm_mask_mtd_deep(benchmark::State& state, DeepShape kind, int depth, bool shortcuts) {
-    const DeepPool p = make_deep_pool(kind, depth);
-    const Shape mask = PlacedMask{&p.mask, 0, 0};
-    std::vector<Manifold> out(p.shapes.size());
+// collide(mask, each shape) timed with the MTD search's shortcuts on or off, then checked
+// against the other setting's answers, bit for bit (every pair must hit).
+void time_mask_mtd(benchmark::State& state, const Shape& mask, const std::vector<Shape>& shapes, bool shortcuts) {
+    std::vector<Manifold> out(shapes.size());
     detail::use_mask_search_shortcuts(shortcuts);
-    time_pool(state, out, 1, [&](std::size_t i, Manifold& m) { m = collide(mask, p.shapes[i]); });
-    // The other side's answers, bit for bit.
+    time_pool(state, out, 1, [&](std::size_t i, Manifold& m) { m = collide(mask, shapes[i]); });
     detail::use_mask_search_shortcuts(!shortcuts);
     Checker c;
     for (std::size_t i = 0; i < out.size(); ++i) {
-        const Manifold other = collide(mask, p.shapes[i]);
+        const Manifold other = collide(mask, shapes[i]);
         if (!out[i].hit || other.hit != out[i].hit || std::bit_cast<std::uint32_t>(other.depth) != std::bit_cast<std::uint32_t>(out[i].depth) ||
             std::bit_cast<std::uint64_t>(other.normal) != std::bit_cast<std::uint64_t>(out[i].normal))
             c.fail(i, fmt("depth %.9g normal (%.9g, %.9g) against %.9g (%.9g, %.9g)", out[i].depth, out[i].normal.x,
@@ -1212,6 +1211,12 @@ void bm_mask_mtd_deep(benchmark::State& state, DeepShape kind, int depth, bool s
     }
     detail::use_mask_search_shortcuts(true);
     c.report(state, false);
+}
+
+void bm_mask_mtd_deep(benchmark::State& state, DeepShape kind, int depth, bool shortcuts) {
+    const DeepPool p = make_deep_pool(kind, depth);
+    const Shape mask = PlacedMask{&p.mask, 0, 0};
+    time_mask_mtd(state, mask, p.shapes, shortcuts);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1250,21 +1255,7 @@ ThinPool make_thin_pool(bool segments, int side) {
 void bm_mask_mtd_thin(benchmark::State& state, bool segments, int side, bool shortcuts) {
     const ThinPool p = make_thin_pool(segments, side);
     const Shape mask = PlacedMask{&p.solid, 0, 0};
-    std::vector<Manifold> out(p.shapes.size());
-    detail::use_mask_search_shortcuts(shortcuts);
-    time_pool(state, out, 1, [&](std::size_t i, Manifold& m) { m = collide(mask, p.shapes[i]); });
-    // The other side's answers, bit for bit.
-    detail::use_mask_search_shortcuts(!shortcuts);
-    Checker c;
-    for (std::size_t i = 0; i < out.size(); ++i) {
-        const Manifold other = collide(mask, p.shapes[i]);
-        if (!out[i].hit || other.hit != out[i].hit || std::bit_cast<std::uint32_t>(other.depth) != std::bit_cast<std::uint32_t>(out[i].depth) ||
-            std::bit_cast<std::uint64_t>(other.normal) != std::bit_cast<std::uint64_t>(out[i].normal))
-            c.fail(i, fmt("depth %.9g normal (%.9g, %.9g) against %.9g (%.9g, %.9g)", out[i].depth, out[i].normal.x,
-                          out[i].normal.y, other.depth, other.normal.x, other.normal.y));
-    }
-    detail::use_mask_search_shortcuts(true);
-    c.report(state, false);
+    time_mask_mtd(state, mask, p.shapes, shortcuts);
 }
 
 // ---------------------------------------------------------------------------------------
